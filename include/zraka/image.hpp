@@ -1,0 +1,46 @@
+#pragma once
+// A linear-light RGB image of floats. Conventions: pixel (0,0) is the top-left corner, x runs
+// right, y runs down; values are linear radiance (no gamma) until a writer encodes them.
+#include <zraka/error.hpp>
+#include <zraka/vec.hpp>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace zraka {
+
+using rgb = vec3_t<float>;
+
+struct image {
+  static constexpr int max_side = 16384;                   // larger is almost surely a typo
+  static constexpr std::size_t max_pixels = 1u << 27;      // 134 M pixels, 1.6 GB of floats
+
+  int width = 0, height = 0;
+  std::vector<rgb> pixels;
+
+  image() = default;
+  image(int w, int h, rgb fill = rgb(0)) : width(w), height(h) {
+    check_size(w, h);
+    pixels.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), fill);
+  }
+
+  rgb& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
+  const rgb& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+
+  // Pixels with a NaN or infinite channel.
+  std::size_t count_nonfinite() const {
+    std::size_t n = 0;
+    for (const rgb& p : pixels) n += is_finite(p) ? 0 : 1;
+    return n;
+  }
+
+  static void check_size(long long w, long long h) {
+    if (w < 1 || h < 1 || w > max_side || h > max_side ||
+        static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > max_pixels)
+      throw error("image size " + std::to_string(w) + "x" + std::to_string(h) +
+                  " is out of range (each side 1.." + std::to_string(max_side) + ")");
+  }
+};
+
+}  // namespace zraka

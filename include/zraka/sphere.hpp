@@ -1,0 +1,79 @@
+#pragma once
+// A sphere S = { x : ||x - c|| = r } (book 1.2) and its intersection with a ray (book 1.5).
+//
+// Substituting R(t) = O + tD gives a t^2 + 2 b t + c = 0 with f = O - C, a = D.D, b = f.D,
+// c = f.f - r^2. Two textbook steps lose all precision and are replaced here:
+//  * the discriminant b^2 - a c cancels catastrophically for a small sphere far away (b^2 and
+//    a c agree in almost every digit). We use the distance from the centre to the ray's line,
+//    l = f - (b/a) D, for which b^2 - a c = a (r^2 - l.l) exactly, and l.l has no cancellation;
+//  * -b + sqrt(...) cancels for the root nearer zero; we take q = -(b + sign(b) sqrt(disc)) and
+//    the roots q/a and c/q (Press et al., Numerical Recipes, section 5.6).
+// After Hearn & Baker and Haines et al., "Precision Improvements for Ray/Sphere Intersection",
+// Ray Tracing Gems (2019), chapter 7.
+#include <zraka/hit.hpp>
+#include <zraka/ray.hpp>
+#include <zraka/spawn.hpp>
+
+namespace zraka {
+
+template <class T> struct sphere_t {
+  vec3_t<T> center{T(0)};
+  T radius = T(1);
+
+  bool contains_point(const vec3_t<T>& x, T tolerance) const {
+    return std::abs(glm::length(x - center) - radius) <= tolerance;
+  }
+  // A sphere with a negative, zero, NaN or infinite radius or centre is never hit.
+  bool valid() const { return radius > T(0) && std::isfinite(radius) && is_finite(center); }
+};
+
+using sphere = sphere_t<double>;
+
+// The nearest hit with t in the open interval (t_min, t_max); fills `rec` only on a hit.
+// [listing sphere-intersect]
+template <class T>
+bool intersect(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& rec) {
+  if (!s.valid()) return false;
+  const vec3_t<T> f = r.origin - s.center;
+  const vec3_t<T> D = r.direction;
+  const T a = glm::dot(D, D);  // 1 for a valid ray, 0 for an invalid one
+  if (!(a > T(0))) return false;
+  const T b = glm::dot(f, D);
+  const T c = glm::dot(f, f) - s.radius * s.radius;
+  const vec3_t<T> l = f - (b / a) * D;  // centre-to-line offset
+  const T disc = a * (s.radius - glm::length(l)) * (s.radius + glm::length(l));
+  if (!(disc >= T(0))) return false;  // also false for NaN
+
+  const T q = -(b + std::copysign(std::sqrt(disc), b));
+  T t0 = c / q, t1 = q / a;  // q == 0 only when both roots are 0: t0 is NaN, rejected below
+  if (t0 > t1) std::swap(t0, t1);
+  T t = t0;
+  if (!(t > t_min && t < t_max)) {
+    t = t1;
+    if (!(t > t_min && t < t_max)) return false;
+  }
+  // [end]
+
+  rec.t = t;
+  // Reproject onto the surface: the radial error of O + tD is removed, and what is left is
+  // bounded as in pbrt (gamma(5) relative to the centre, plus one rounding for adding c back).
+  const vec3_t<T> local = r.at(t) - s.center;
+  const vec3_t<T> on = local * (s.radius / glm::length(local));
+  rec.p = s.center + on;
+  rec.p_error = gamma<T>(6) * (glm::abs(on) + glm::abs(rec.p));
+  rec.normal = on / s.radius;
+  rec.set_face(D);
+  // uv: longitude phi/(2 pi) in [0,1), latitude theta/pi from -y (0) to +y (1).
+  const T phi = std::atan2(-rec.normal.z, rec.normal.x) + pi<T>;
+  const T theta = std::acos(std::clamp(-rec.normal.y, T(-1), T(1)));
+  rec.uv = {phi / (T(2) * pi<T>), theta / pi<T>};
+  return true;
+}
+
+// Shadow rays only ask whether anything is in the way.
+template <class T> bool occludes(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max) {
+  hit_t<T> ignored;
+  return intersect(s, r, t_min, t_max, ignored);
+}
+
+}  // namespace zraka

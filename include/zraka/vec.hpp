@@ -1,0 +1,43 @@
+#pragma once
+// Vectors (book 1.0). GLM supplies the types and the dot, cross and length of Def 1.0.4-1.0.6;
+// zraka adds only what the book needs beyond them. Every geometric type is a template on the
+// scalar T (float or double) so the tests can check both; the short names use double.
+#include <glm/glm.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace zraka {
+
+template <class T> using vec2_t = glm::vec<2, T, glm::defaultp>;
+template <class T> using vec3_t = glm::vec<3, T, glm::defaultp>;
+template <class T> using mat3_t = glm::mat<3, 3, T, glm::defaultp>;
+
+using vec2 = vec2_t<double>;
+using vec3 = vec3_t<double>;
+using mat3 = mat3_t<double>;
+using vec3f = vec3_t<float>;
+
+template <class T> constexpr T pi = T(3.141592653589793238462643383279502884L);
+template <class T> constexpr T infinity = std::numeric_limits<T>::infinity();
+
+// ||v||^2 without the square root.
+template <class T> T length2(const vec3_t<T>& v) { return glm::dot(v, v); }
+
+template <class T> bool is_finite(const vec3_t<T>& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+template <class T> T max_component(const vec3_t<T>& v) { return std::max({v.x, v.y, v.z}); }
+
+// v / ||v||, or the zero vector when v is zero, NaN or infinite. Scaling by the largest
+// component first keeps ||v||^2 from overflowing (1e200) or underflowing (1e-200).
+template <class T> vec3_t<T> normalize_or_zero(const vec3_t<T>& v) {
+  const T m = max_component(glm::abs(v));
+  if (!(m > T(0)) || !std::isfinite(m)) return vec3_t<T>(0);
+  const vec3_t<T> s = v / m;
+  return s / std::sqrt(glm::dot(s, s));
+}
+
+}  // namespace zraka

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs the Debian packages zraka needs, and does nothing when they are all present.
+# Usage: bash tools/setup.sh [--extras]   (--extras adds Embree for the BVH benchmark and pandoc for the book)
+set -euo pipefail
+
+core=(build-essential cmake pkg-config
+      libglm-dev libstb-dev libglfw3-dev libepoxy-dev
+      opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
+      doctest-dev libyaml-cpp-dev libtinyobjloader-dev libcli11-dev libfmt-dev
+      xvfb xauth libgl1-mesa-dri python3)
+extras=(libembree-dev pandoc)
+
+want=("${core[@]}")
+[[ "${1:-}" == "--extras" ]] && want+=("${extras[@]}")
+
+missing=()
+for p in "${want[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "setup: installing ${missing[*]}" >&2
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "setup: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  sudo="sudo"
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
