@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian packages zraka needs, and does nothing when they are all present.
-# Usage: bash tools/setup.sh [--extras]   (--extras adds Embree for the BVH benchmark and pandoc for the book)
+# Usage: bash tools/setup.sh [--extras]   (--extras adds Embree for the BVH benchmark, pandoc for the book and python3-venv for its plots)
 set -euo pipefail
 
 core=(build-essential cmake pkg-config
@@ -8,7 +8,7 @@ core=(build-essential cmake pkg-config
       opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
       doctest-dev libyaml-cpp-dev libtinyobjloader-dev libcli11-dev libfmt-dev
       xvfb xauth libgl1-mesa-dri python3)
-extras=(libembree-dev pandoc)
+extras=(libembree-dev pandoc python3-venv)  # python3-venv: tools/plot-setup.sh (book plots)
 
 want=("${core[@]}")
 [[ "${1:-}" == "--extras" ]] && want+=("${extras[@]}")

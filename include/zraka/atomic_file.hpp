@@ -16,7 +16,12 @@ inline void write_file_atomically(const std::filesystem::path& path, std::string
   const auto dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   if (!std::filesystem::is_directory(dir))
     throw error("cannot write " + path.string() + ": folder " + dir.string() + " does not exist");
-  const auto tmp = dir / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
+  // Built piecewise: GCC 12 gives a false -Wrestrict on `"." + std::string` once inlined.
+  std::string tmp_name = ".";
+  tmp_name += path.filename().string();
+  tmp_name += ".tmp";
+  tmp_name += std::to_string(::getpid());
+  const auto tmp = dir / tmp_name;
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

@@ -6,6 +6,11 @@
 //
 // The hash is PCG's output permutation used as a hash ("pcg_hash"; Jarzynski & Olano, "Hash
 // Functions for GPU Rendering", JCGT 2020), chained once per input word.
+//
+// The key is two words, one from the pixel and one from the sample index, each a bijection of
+// its input for a fixed seed: two different (pixel, sample) pairs never share a key. (A single
+// 32-bit key allows only 2^32 distinct streams, so by the birthday bound 2^20 (pixel, sample)
+// pairs, one small image at 4 spp, would already share about 128 identical streams.)
 #include <zraka/vec.hpp>
 
 #include <cstdint>
@@ -25,23 +30,40 @@ constexpr std::uint32_t hash_combine(std::uint32_t h, std::uint32_t word) {
   return pcg_hash(h ^ (word + 0x9e3779b9u + (h << 6) + (h >> 2)));
 }
 
+// The 64-bit seed folded into one word.
+constexpr std::uint32_t seed_word(std::uint64_t seed) {
+  return hash_combine(pcg_hash(std::uint32_t(seed)), std::uint32_t(seed >> 32));
+}
+
 class rng {
  public:
   // A stream for (seed, pixel, sample); `dimension` counts the numbers drawn from it so far.
+  // pixel + s and sample + t are bijections, and so is pcg_hash, hence the two key words.
   explicit constexpr rng(std::uint64_t seed, std::uint32_t pixel = 0, std::uint32_t sample = 0)
-      : key_(hash_combine(hash_combine(hash_combine(pcg_hash(std::uint32_t(seed)),
-                                                    std::uint32_t(seed >> 32)),
-                                       pixel),
-                          sample)) {}
+      : key_pixel_(pcg_hash(pixel + seed_word(seed))),
+        key_sample_(pcg_hash(sample + pcg_hash(seed_word(seed) ^ 0x5bd1e995u))) {}
 
-  constexpr std::uint32_t next_u32() { return hash_combine(key_, dimension_++); }
+  // [listing rng-next]
+  // Number `dimension` of the stream: a hash of (key, dimension), no state but the counter.
+  constexpr std::uint32_t next_u32() {
+    return pcg_hash(key_pixel_ ^ hash_combine(key_sample_, dimension_++));
+  }
+  // [end]
 
-  // Uniform in [0,1): 24 random bits for float, 53 for double (never exactly 1).
-  float uniform_float() { return float(next_u32() >> 8) * 0x1p-24f; }
-  double uniform() {
-    const std::uint64_t hi = next_u32() >> 5, lo = next_u32() >> 6;  // 27 + 26 bits
+  // [listing rng-uniform]
+  // Uniform in [0,1): 24 random bits for float, 53 for double, the most each type holds
+  // exactly below 1. Using all 32 bits would round values near 1 up to exactly 1.
+  static constexpr float unit_float(std::uint32_t u) { return float(u >> 8) * 0x1p-24f; }
+  static constexpr double unit_double(std::uint32_t u, std::uint32_t v) {
+    const std::uint64_t hi = u >> 5, lo = v >> 6;  // 27 + 26 bits
     return double((hi << 26) | lo) * 0x1p-53;
   }
+  float uniform_float() { return unit_float(next_u32()); }
+  double uniform() {
+    const std::uint32_t u = next_u32();  // two statements: the order of the draws is fixed
+    return unit_double(u, next_u32());
+  }
+  // [end]
   vec2 uniform2() {
     const double a = uniform();
     return {a, uniform()};
@@ -51,7 +73,7 @@ class rng {
   void skip_to(std::uint32_t dimension) { dimension_ = dimension; }
 
  private:
-  std::uint32_t key_;
+  std::uint32_t key_pixel_, key_sample_;
   std::uint32_t dimension_ = 0;
 };
 
