@@ -1,15 +1,35 @@
 // Chapter 1.2 — the sphere. Ray-cast one sphere: every pixel sends a ray, and the pixel is
 // shaded where the ray hits (by the normal, so the shape reads) and white where it misses.
-// Writes the image as PPM (the thesis's text pixel matrix) and PNG, and checks every hit point
-// lies on the sphere.
+// Writes the image as PPM (the thesis's text pixel matrix) and PNG, checks every hit point
+// lies on the sphere, and compares the fraction of pixels hit with the fraction the sphere's
+// projected disc covers, computed in closed form.
 #include <zraka/camera.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image_io.hpp>
 #include <zraka/sphere.hpp>
+#include <zraka/stopwatch.hpp>
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+
+namespace {
+
+// [listing disc-fraction]
+// Area of the part of a disc of radius R (centred at 0) inside the rectangle [-W,W] x [-H,H],
+// divided by the rectangle's area. By symmetry it is 4 times the quarter in x, y >= 0:
+// the integral over x in [0, min(W,R)] of min(H, sqrt(R^2 - x^2)).
+double disc_fraction(double R, double W, double H) {
+  const auto F = [R](double x) {  // antiderivative of sqrt(R^2 - x^2)
+    return 0.5 * (x * std::sqrt(std::max(0.0, R * R - x * x)) + R * R * std::asin(std::min(1.0, x / R)));
+  };
+  const double x_end = std::min(W, R);
+  const double x_flat = R > H ? std::min(std::sqrt(R * R - H * H), x_end) : 0.0;  // min is H there
+  return (H * x_flat + F(x_end) - F(x_flat)) / (W * H);
+}
+// [end]
+
+}  // namespace
 
 int main(int argc, char** argv) {
   int width = 320, height = 240;
@@ -24,7 +44,9 @@ int main(int argc, char** argv) {
 
   return zraka::guarded([&] {
     using namespace zraka;
-    if (!(radius > 0)) throw error("--radius must be positive, got " + std::to_string(radius));
+    const stopwatch clock;
+    if (!(radius > 0) || !std::isfinite(radius))
+      throw error("--radius must be positive, got " + std::to_string(radius));
     image img(width, height);
 
     // [listing cast]
@@ -52,13 +74,37 @@ int main(int argc, char** argv) {
       }
     // [end]
 
+    // The expected fraction. Seen from distance d, the sphere fills a cone of half-angle
+    // alpha = asin(r/d); on an image plane at distance 1 that is a disc of radius tan(alpha),
+    // and the image is the rectangle of half-sizes aspect * tan(vfov/2) by tan(vfov/2).
+    // [listing expected]
+    const double d = glm::length(cam_settings.position - ball.center);
+    const double half_h = std::tan(cam_settings.vfov_degrees * pi<double> / 360);
+    const double half_w = cam_settings.aspect * half_h;
+    const double disc_r = radius < d ? radius / std::sqrt(d * d - radius * radius) : infinity<double>;
+    const double expected = radius < d ? disc_fraction(disc_r, half_w, half_h) : 1.0;
+    // [end]
+    const double measured = double(hits) / (double(width) * height);
+    // Pixel-centre sampling is exact except in pixels the silhouette crosses; a circle of
+    // radius R px crosses at most 8 R + 12 of them (4 monotone arcs, R + 1 lines each way).
+    const double disc_px = disc_r / (2 * half_h) * height;  // infinite with the camera inside
+    const double bound = std::min(1.0, (8 * std::min(disc_px, double(width + height)) + 12) /
+                                           (double(width) * height));
+
+    if (std::abs(measured - expected) > bound)
+      throw error("the measured fraction is outside its bound: a bug in the camera or the sphere");
     write_ppm(img, out + ".ppm");
     write_png(img, out + ".png");
-    std::printf("pixels hit: %ld of %d (%.1f%%)\n", hits, width * height,
-                100.0 * hits / (double(width) * height));
+    std::printf("pixels hit: %ld of %d (%.1f%%)\n", hits, width * height, 100 * measured);
+    std::printf("expected from the projected disc (radius %.4g px): %.2f%%; difference %.3f%% "
+                "(at most %.2f%%: pixels the silhouette crosses)\n",
+                disc_px, 100 * expected, 100 * (measured - expected), 100 * bound);
     std::printf("worst distance of a hit point from the sphere: %.3g (radius %g)\n",
                 worst_off_surface, radius);
     std::printf("wrote %s.ppm and %s.png\n", out.c_str(), out.c_str());
+    std::printf("summary: %dx%d rays in %.3f s, %.2f%% hit (expected %.2f%%), hit points within "
+                "%.3g of the sphere\n", width, height, clock.seconds(), 100 * measured,
+                100 * expected, worst_off_surface);
     return 0;
   });
 }

@@ -12,11 +12,13 @@ template <class T> struct affine_t {
   mat3_t<T> linear{T(1)};     // B
   vec3_t<T> translation{T(0)};  // u
 
+  // [listing affine-apply]
   vec3_t<T> point(const vec3_t<T>& x) const { return linear * x + translation; }
   vec3_t<T> vector(const vec3_t<T>& v) const { return linear * v; }
   vec3_t<T> normal(const vec3_t<T>& n) const {
     return normalize_or_zero(glm::transpose(glm::inverse(linear)) * n);
   }
+  // [end]
   // (this * other)(x) = this(other(x))
   affine_t operator*(const affine_t& other) const {
     return {linear * other.linear, linear * other.translation + translation};

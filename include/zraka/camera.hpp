@@ -6,7 +6,10 @@
 //
 // The settings are plain members; prepare() computes the lens frame once, and the prepared
 // camera's generate() makes rays:  auto cam = settings.prepare(); ray r = cam.generate(s, t);
+#include <zraka/error.hpp>
 #include <zraka/ray.hpp>
+
+#include <string>
 
 namespace zraka {
 
@@ -23,8 +26,9 @@ template <class T> struct camera_t {
     vec3_t<T> origin, u, v, corner, horizontal, vertical;
     T lens_radius;
 
-    // s, t: image-plane position; lens_u, lens_v in [0,1): where on the lens (thin lens only).
-    ray_t<T> generate(T s, T t, T lens_u = T(0.5), T lens_v = T(0.5)) const {
+    // s, t: image-plane position; lens_u, lens_v in [0,1): where on the lens (thin lens only;
+    // the default (0, 0) is the lens centre).
+    ray_t<T> generate(T s, T t, T lens_u = T(0), T lens_v = T(0)) const {
       const vec3_t<T> target = corner + s * horizontal + t * vertical;
       vec3_t<T> o = origin;
       if (lens_radius > T(0)) {  // uniform point on the lens disk (sampling.hpp explains why sqrt)
@@ -36,9 +40,18 @@ template <class T> struct camera_t {
     }
   };
 
+  // Throws zraka::error for settings that define no camera (instead of making NaN rays).
   prepared prepare() const {
+    if (!(vfov_degrees > T(0) && vfov_degrees < T(180)))
+      throw error("camera: vfov_degrees must be in (0, 180), got " + std::to_string(vfov_degrees));
+    if (!(aspect > T(0)) || !std::isfinite(aspect))
+      throw error("camera: aspect must be positive, got " + std::to_string(aspect));
+    if (!(aperture >= T(0)) || !(focus_distance >= T(0)))
+      throw error("camera: aperture and focus_distance must not be negative");
     const vec3_t<T> w = normalize_or_zero(position - look_at);  // the camera looks along -w
     const vec3_t<T> u = normalize_or_zero(glm::cross(up, w));
+    if (w == vec3_t<T>(0) || u == vec3_t<T>(0))
+      throw error("camera: position equals look_at, or up is parallel to the view direction");
     const vec3_t<T> v = glm::cross(w, u);
     const T focus = focus_distance > T(0) ? focus_distance : glm::length(look_at - position);
     const T half_h = std::tan(vfov_degrees * pi<T> / T(360)) * focus;

@@ -18,6 +18,9 @@ template <class F> int guarded(F&& body) {
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << '\n';
     return 1;
+  } catch (...) {  // not a std::exception: still no crash, still exit code 1
+    std::cerr << "error: unknown exception\n";
+    return 1;
   }
 }
 

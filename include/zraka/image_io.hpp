@@ -24,9 +24,11 @@
 
 namespace zraka {
 
-// The sRGB transfer function (IEC 61966-2-1), clamped to [0,1].
+// The sRGB transfer function (IEC 61966-2-1), clamped to [0,1]; NaN gives 0 (std::clamp
+// would pass NaN through, and lround(NaN) is undefined).
 inline float linear_to_srgb(float v) {
-  v = std::clamp(v, 0.0f, 1.0f);
+  if (!(v > 0.0f)) return 0.0f;
+  v = std::min(v, 1.0f);
   return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
 }
 inline float srgb_to_linear(float s) {

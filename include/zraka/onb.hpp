@@ -10,6 +10,7 @@ namespace zraka {
 template <class T> struct onb_t {
   vec3_t<T> t, b, n;
 
+  // [listing onb]
   explicit onb_t(const vec3_t<T>& unit_n) : n(unit_n) {
     const T sign = std::copysign(T(1), n.z);
     const T a = T(-1) / (sign + n.z);
@@ -17,6 +18,7 @@ template <class T> struct onb_t {
     t = vec3_t<T>(T(1) + sign * n.x * n.x * a, sign * c, -sign * n.x);
     b = vec3_t<T>(c, sign + n.y * n.y * a, -n.y);
   }
+  // [end]
   vec3_t<T> to_world(const vec3_t<T>& v) const { return v.x * t + v.y * b + v.z * n; }
   vec3_t<T> to_local(const vec3_t<T>& v) const {
     return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)};

@@ -10,12 +10,15 @@
 //    the roots q/a and c/q (Press et al., Numerical Recipes, section 5.6).
 // After Hearn & Baker and Haines et al., "Precision Improvements for Ray/Sphere Intersection",
 // Ray Tracing Gems (2019), chapter 7.
+// Range: f.f and r*r must not overflow, so coordinates and radii stay below about 1e153
+// (double) or 1e18 (float); tests/test_sphere.cpp measures the accuracy inside that range.
 #include <zraka/hit.hpp>
 #include <zraka/ray.hpp>
 #include <zraka/spawn.hpp>
 
 namespace zraka {
 
+// [listing sphere]
 template <class T> struct sphere_t {
   vec3_t<T> center{T(0)};
   T radius = T(1);
@@ -26,6 +29,7 @@ template <class T> struct sphere_t {
   // A sphere with a negative, zero, NaN or infinite radius or centre is never hit.
   bool valid() const { return radius > T(0) && std::isfinite(radius) && is_finite(center); }
 };
+// [end]
 
 using sphere = sphere_t<double>;
 
@@ -55,15 +59,19 @@ bool intersect(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max, hit_t<
   // [end]
 
   rec.t = t;
-  // Reproject onto the surface: the radial error of O + tD is removed, and what is left is
+  // Reproject onto the surface: the radial error of f + tD is removed, and what is left is
   // bounded as in pbrt (gamma(5) relative to the centre, plus one rounding for adding c back).
-  const vec3_t<T> local = r.at(t) - s.center;
+  // A sphere below the resolution of its coordinates can give local = 0; then the hit is
+  // taken head-on (against D when entering, along D when leaving) instead of dividing by 0.
+  vec3_t<T> local = f + t * D;
+  const T len = glm::length(local);
+  if (!(len > T(0)) || !std::isfinite(len)) local = (t == t0 ? -D : D);
   const vec3_t<T> on = local * (s.radius / glm::length(local));
   rec.p = s.center + on;
   rec.p_error = gamma<T>(6) * (glm::abs(on) + glm::abs(rec.p));
   rec.normal = on / s.radius;
   rec.set_face(D);
-  // uv: longitude phi/(2 pi) in [0,1), latitude theta/pi from -y (0) to +y (1).
+  // uv: longitude phi/(2 pi) in [0,1], latitude theta/pi from -y (0) to +y (1).
   const T phi = std::atan2(-rec.normal.z, rec.normal.x) + pi<T>;
   const T theta = std::acos(std::clamp(-rec.normal.y, T(-1), T(1)));
   rec.uv = {phi / (T(2) * pi<T>), theta / pi<T>};

@@ -31,13 +31,17 @@ template <class T> bool is_finite(const vec3_t<T>& v) {
 
 template <class T> T max_component(const vec3_t<T>& v) { return std::max({v.x, v.y, v.z}); }
 
-// v / ||v||, or the zero vector when v is zero, NaN or infinite. Scaling by the largest
-// component first keeps ||v||^2 from overflowing (1e200) or underflowing (1e-200).
+// [listing normalize]
+// v / ||v||, or the zero vector when v is zero or has a NaN or infinite component. Scaling by
+// the largest component first keeps ||v||^2 from overflowing (1e200) or underflowing (1e-200).
+// (The finiteness test comes first: max_component of (1, NaN, 1) is 1, not NaN.)
 template <class T> vec3_t<T> normalize_or_zero(const vec3_t<T>& v) {
+  if (!is_finite(v)) return vec3_t<T>(0);
   const T m = max_component(glm::abs(v));
-  if (!(m > T(0)) || !std::isfinite(m)) return vec3_t<T>(0);
+  if (!(m > T(0))) return vec3_t<T>(0);
   const vec3_t<T> s = v / m;
   return s / std::sqrt(glm::dot(s, s));
 }
+// [end]
 
 }  // namespace zraka

@@ -1,0 +1,157 @@
+// Tests for image_io.hpp: PNG/PPM as sRGB bytes, PFM as exact floats, NaN handling, atomic
+// writes and clear errors. PNGs are decoded again with stb_image to check what was written.
+#include <zraka/image_io.hpp>
+
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+#include <doctest/doctest.h>
+
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <unistd.h>
+
+using namespace zraka;
+namespace fs = std::filesystem;
+
+namespace {
+struct temp_dir {
+  fs::path path = fs::temp_directory_path() / ("zraka-test-io-" + std::to_string(::getpid()));
+  temp_dir() { fs::create_directories(path); }
+  ~temp_dir() { fs::remove_all(path); }
+  std::size_t entries() const {
+    return std::size_t(std::distance(fs::directory_iterator(path), fs::directory_iterator()));
+  }
+};
+struct capture_cerr {
+  std::ostringstream text;
+  std::streambuf* old = std::cerr.rdbuf(text.rdbuf());
+  ~capture_cerr() { std::cerr.rdbuf(old); }
+};
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+const float nan_f = std::numeric_limits<float>::quiet_NaN();
+}  // namespace
+
+TEST_CASE("image_io: the sRGB transfer function at known points") {
+  CHECK(to_byte(0.0f) == 0);
+  CHECK(to_byte(1.0f) == 255);
+  CHECK(to_byte(7.5f) == 255);   // clamped
+  CHECK(to_byte(-1.0f) == 0);    // clamped
+  CHECK(to_byte(std::numeric_limits<float>::quiet_NaN()) == 0);  // never undefined behaviour
+  CHECK(to_byte(0.5f) == 188);   // 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354 -> 187.5 -> 188
+  CHECK(to_byte(0.0031308f) == 10);  // the linear segment's end: 12.92 * 0.0031308 = 0.04045
+  CHECK(to_byte(0.2159f) == 128);    // mid grey in sRGB is only 21.6 % linear light
+  // Round trip through 8 bits: every byte decodes and re-encodes to itself.
+  for (int b = 0; b < 256; ++b) CHECK(to_byte(srgb_to_linear(b / 255.0f)) == b);
+}
+
+TEST_CASE("image_io: PPM P3 text is exact for a tiny image") {
+  temp_dir dir;
+  image img(2, 2);
+  img.at(0, 0) = rgb(1, 0, 0);
+  img.at(1, 0) = rgb(0, 1, 0.5f);
+  img.at(0, 1) = rgb(0, 0, 1);
+  img.at(1, 1) = rgb(0.2159f);
+  CHECK(write_ppm(img, dir.path / "t.ppm") == 0);
+  CHECK(read(dir.path / "t.ppm") == "P3\n2 2\n255\n255 0 0\n0 255 188\n0 0 255\n128 128 128\n");
+}
+
+TEST_CASE("image_io: PNG is a valid PNG holding the sRGB-encoded pixels") {
+  temp_dir dir;
+  image img(5, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) img.at(x, y) = rgb(x / 4.0f, y / 2.0f, 0.5f);
+  CHECK(write_png(img, dir.path / "t.png") == 0);
+  int w = 0, h = 0, channels = 0;
+  std::unique_ptr<unsigned char, void (*)(void*)> data(
+      stbi_load((dir.path / "t.png").c_str(), &w, &h, &channels, 3), stbi_image_free);
+  REQUIRE(data != nullptr);
+  CHECK(w == 5);
+  CHECK(h == 3);
+  CHECK(channels == 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x)
+      for (int c = 0; c < 3; ++c)
+        CHECK(int(data.get()[3 * (y * 5 + x) + c]) == int(to_byte(img.at(x, y)[c])));
+  CHECK(int(data.get()[2]) == 188);  // linear 0.5 is written as sRGB 188, not 128
+}
+
+TEST_CASE("image_io: NaN pixels are counted, written magenta and reported") {
+  temp_dir dir;
+  image img(3, 1, rgb(0.5f));
+  img.at(1, 0) = rgb(0, nan_f, 0);
+  capture_cerr cap;
+  CHECK(write_png(img, dir.path / "n.png") == 1);
+  CHECK(write_ppm(img, dir.path / "n.ppm") == 1);
+  CHECK(cap.text.str().find("warning: 1 NaN/inf pixel(s) written as magenta") != std::string::npos);
+  CHECK(read(dir.path / "n.ppm") == "P3\n3 1\n255\n188 188 188\n255 0 255\n188 188 188\n");
+  int w = 0, h = 0, n = 0;
+  std::unique_ptr<unsigned char, void (*)(void*)> data(
+      stbi_load((dir.path / "n.png").c_str(), &w, &h, &n, 3), stbi_image_free);
+  REQUIRE(data != nullptr);
+  CHECK(int(data.get()[3]) == 255);
+  CHECK(int(data.get()[4]) == 0);
+  CHECK(int(data.get()[5]) == 255);
+}
+
+TEST_CASE("image_io: PFM round trip is bit-exact; PFM refuses NaN") {
+  temp_dir dir;
+  image img(3, 2);
+  const float specials[] = {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(),
+                            std::numeric_limits<float>::max(), 1e-30f, 0.1f, 12345.678f,
+                            -2.5f, std::nextafter(1.0f, 2.0f)};
+  for (std::size_t i = 0; i < img.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) img.pixels[i][c] = specials[(3 * i + c) % 9] * (c == 2 ? -1 : 1);
+  write_pfm(img, dir.path / "t.pfm");
+  const image back = read_pfm(dir.path / "t.pfm");
+  REQUIRE(back.width == 3);
+  REQUIRE(back.height == 2);
+  CHECK(std::memcmp(back.pixels.data(), img.pixels.data(), img.pixels.size() * sizeof(rgb)) == 0);
+  // Rows bottom to top in the file: the last row of floats is the image's top row.
+  const std::string bytes = read(dir.path / "t.pfm");
+  CHECK(bytes.rfind("PF\n3 2\n-1.0\n", 0) == 0);
+  CHECK(std::memcmp(bytes.data() + bytes.size() - 3 * sizeof(rgb), &img.at(0, 0), 3 * sizeof(rgb)) == 0);
+
+  img.at(2, 1).r = nan_f;
+  CHECK_THROWS_WITH_AS(write_pfm(img, dir.path / "nan.pfm"), doctest::Contains("1 NaN/inf pixel(s)"),
+                       error);
+  CHECK_FALSE(fs::exists(dir.path / "nan.pfm"));
+}
+
+TEST_CASE("image_io: truncated or foreign PFM files give a clear error") {
+  temp_dir dir;
+  image img(4, 4, rgb(0.25f));
+  write_pfm(img, dir.path / "t.pfm");
+  std::string bytes = read(dir.path / "t.pfm");
+  bytes.resize(bytes.size() - 5);
+  std::ofstream(dir.path / "cut.pfm", std::ios::binary) << bytes;
+  CHECK_THROWS_WITH_AS(read_pfm(dir.path / "cut.pfm"), doctest::Contains("file ends early (truncated PFM)"),
+                       error);
+  std::ofstream(dir.path / "p6.pfm", std::ios::binary) << "P6\n1 1\n255\nabc";
+  CHECK_THROWS_WITH_AS(read_pfm(dir.path / "p6.pfm"), doctest::Contains("not a little-endian colour PFM"),
+                       error);
+  std::ofstream(dir.path / "big.pfm", std::ios::binary) << "PF\n100000 100000\n-1.0\n";
+  CHECK_THROWS_WITH_AS(read_pfm(dir.path / "big.pfm"), doctest::Contains("out of range"), error);
+  CHECK_THROWS_WITH_AS(read_pfm(dir.path / "none.pfm"), doctest::Contains("cannot open"), error);
+}
+
+TEST_CASE("image_io: a write into a missing folder throws and leaves nothing; no temporaries") {
+  temp_dir dir;
+  image img(2, 2);
+  for (const char* name : {"a.png", "a.ppm", "a.pfm"}) {
+    CHECK_THROWS_WITH_AS(write_image(img, dir.path / "missing" / name), doctest::Contains("does not exist"),
+                         error);
+    write_image(img, dir.path / name);
+  }
+  CHECK(dir.entries() == 3);  // a.png a.ppm a.pfm and nothing else
+  CHECK_THROWS_WITH_AS(write_image(img, dir.path / "a.jpg"), doctest::Contains("unknown image type '.jpg'"),
+                       error);
+  CHECK(dir.entries() == 3);
+}
