@@ -2,9 +2,23 @@
 // Ray-triangle intersection (book 1.5). A triangle ABC, counter-clockwise seen from the side its
 // normal N = (B-A) x (C-A) / ||...|| points to (book 1.4, eq. 1.5).
 // Hits report barycentrics in uv: P = (1-u-v) A + u B + v C.
+//
+// Three methods with one interface, so that the book and chapter 1.5 can compare them:
+//  * intersect_edge_tests: the thesis's geometric method (plane, then three edge tests), fixed;
+//  * intersect_moller_trumbore: Moller & Trumbore (1997), Cramer's rule, no plane equation;
+//  * intersect_watertight: Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection" (JCGT
+//    2013), with a t that is accepted only when its sign is certain (as in pbrt, 3rd ed., 3.9).
+// intersect() without a method is the watertight one: a ray through an edge or a vertex shared by
+// two triangles hits at least one of them, and a spawned ray never hits its own triangle.
+// Every method: a degenerate triangle (computed N = 0) and NaN/inf input are never hit; hits
+// are in the open interval (t_min, t_max), t_min >= 0.
 #include <zraka/hit.hpp>
 #include <zraka/ray.hpp>
 #include <zraka/spawn.hpp>
+
+#include <cmath>
+#include <string_view>
+#include <utility>
 
 namespace zraka {
 
@@ -16,6 +30,7 @@ template <class T> struct triangle_t {
 };
 
 using triangle = triangle_t<double>;
+using trianglef = triangle_t<float>;
 
 // Fills the hit record from barycentrics; the point is interpolated from the vertices (not
 // O + tD), which bounds its error by gamma(7) times the weighted vertex magnitudes (pbrt 3.9.5).
@@ -30,11 +45,47 @@ void fill_triangle_hit(const triangle_t<T>& tri, const ray_t<T>& r, T t, T u, T 
   rec.set_face(r.direction);
 }
 
+namespace detail {
+// The guard every method starts with. n = (B-A) x (C-A) is zero for a degenerate triangle, and
+// NaN or infinite when a vertex is (or when the coordinates are so large that n overflows).
+template <class T> bool can_hit(const triangle_t<T>& tri, const ray_t<T>& r) {
+  const vec3_t<T> n = glm::cross(tri.b - tri.a, tri.c - tri.a);
+  return is_finite(n) && n != vec3_t<T>(T(0)) && r.valid() && is_finite(r.direction);
+}
+}  // namespace detail
+
+// The thesis's geometric method (Example 1.5.3, Listing 1.12) with its errors fixed (errata B2):
+// each edge's cross product has its own name, t < t_min is rejected, and the barycentrics are
+// the area ratios of eq. 1.15, as signed areas: n . ((B-A) x (P-A)) = |n| 2 area(ABP).
+// [listing edge-tests]
+template <class T>
+bool intersect_edge_tests(const triangle_t<T>& tri, const ray_t<T>& r, T t_min, T t_max,
+                          hit_t<T>& rec) {
+  if (!detail::can_hit(tri, r)) return false;
+  const vec3_t<T> n = glm::cross(tri.b - tri.a, tri.c - tri.a);  // eq. 1.5, not normalised
+  const T n_dot_d = glm::dot(n, r.direction);
+  if (n_dot_d == T(0)) return false;  // the ray runs parallel to the plane
+  const T t = glm::dot(n, tri.a - r.origin) / n_dot_d;  // eq. 1.16
+  if (!(t > t_min && t < t_max)) return false;
+  const vec3_t<T> p = r.at(t);
+  const vec3_t<T> c_ab = glm::cross(tri.b - tri.a, p - tri.a);  // eq. 1.17, edge AB
+  const vec3_t<T> c_bc = glm::cross(tri.c - tri.b, p - tri.b);  // edge BC
+  const vec3_t<T> c_ca = glm::cross(tri.a - tri.c, p - tri.c);  // edge CA
+  const T area_abp = glm::dot(n, c_ab), area_bcp = glm::dot(n, c_bc), area_cap = glm::dot(n, c_ca);
+  if (!(area_abp >= T(0) && area_bcp >= T(0) && area_cap >= T(0))) return false;  // outside
+  const T area_abc = glm::dot(n, n);
+  fill_triangle_hit(tri, r, t, area_cap / area_abc, area_abp / area_abc, rec);  // eq. 1.15
+  return true;
+}
+// [end]
+
 // Moller-Trumbore (1997): solve O + tD = (1-u-v)A + uB + vC by Cramer's rule, with no need for
 // the plane equation. Nearest hit with t in (t_min, t_max).
 // [listing moller-trumbore]
 template <class T>
-bool intersect(const triangle_t<T>& tri, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& rec) {
+bool intersect_moller_trumbore(const triangle_t<T>& tri, const ray_t<T>& r, T t_min, T t_max,
+                               hit_t<T>& rec) {
+  if (!detail::can_hit(tri, r)) return false;
   const vec3_t<T> e1 = tri.b - tri.a, e2 = tri.c - tri.a;
   const vec3_t<T> p = glm::cross(r.direction, e2);
   const T det = glm::dot(e1, p);
@@ -52,5 +103,120 @@ bool intersect(const triangle_t<T>& tri, const ray_t<T>& r, T t_min, T t_max, hi
   return true;
 }
 // [end]
+
+namespace detail {
+// a b - c d with its sign exact. Rounded the plain way, fl(fl(ab) - fl(cd)) never has the wrong
+// sign (rounding is monotone), it can only lose it as 0, and the paper recomputes just that case.
+// But a compiler may fuse a product and the subtraction into one FMA (GCC does on ARM, or with
+// -march=native on x86), and fl(ab - fl(cd)) can have the wrong sign. So we filter instead: the
+// error is at most gamma(2)(|ab| + |cd|) either way, and only within that bound (0 included) is
+// the sign decided again, exactly. float: the products of floats are exact in double, and the
+// one rounding of the difference keeps its sign. double: Kahan's difference of products with
+// FMA, whose relative error is below 2 ulp (Jeannerod, Louvet, Muller 2013), so its sign is exact.
+// [listing exact-edge]
+inline float difference_of_products(float a, float b, float c, float d) {
+  return float(double(a) * double(b) - double(c) * double(d));
+}
+inline double difference_of_products(double a, double b, double c, double d) {
+  const double cd = c * d;
+  const double cd_error = std::fma(-c, d, cd);  // cd - c*d, exactly
+  return std::fma(a, b, -cd) + cd_error;
+}
+template <class T> T edge_function(T a, T b, T c, T d) {
+  const T e = a * b - c * d;
+  if (std::abs(e) > gamma<T>(3) * (std::abs(a * b) + std::abs(c * d))) return e;  // sign certain
+  return difference_of_products(a, b, c, d);
+}
+// [end]
+}  // namespace detail
+
+// Watertight (Woop, Benthin, Wald 2013). Move the ray to the origin, permute the axes so that
+// its largest direction component is z, and shear so that it becomes the +z axis. Then the
+// ray hits the triangle when the origin lies inside the projected triangle (x, y): three 2-D
+// edge functions of one sign. An edge function depends only on its edge's two vertices, and
+// its sign is computed exactly (see edge_function), so the two triangles sharing an
+// edge always see the ray on opposite sides of it, or both exactly on it (edges are inclusive).
+// [listing watertight]
+template <class T>
+bool intersect_watertight(const triangle_t<T>& tri, const ray_t<T>& r, T t_min, T t_max,
+                          hit_t<T>& rec) {
+  if (!detail::can_hit(tri, r)) return false;
+  const vec3_t<T>& D = r.direction;
+  const vec3_t<T> ad = glm::abs(D);
+  const int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+  if (D[kz] < T(0)) std::swap(kx, ky);  // keep the winding
+  const T sx = D[kx] / D[kz], sy = D[ky] / D[kz], sz = T(1) / D[kz];
+  auto to_ray_space = [&](const vec3_t<T>& v) {
+    const vec3_t<T> q = v - r.origin;
+    return vec3_t<T>(q[kx] - sx * q[kz], q[ky] - sy * q[kz], sz * q[kz]);
+  };
+  const vec3_t<T> a = to_ray_space(tri.a), b = to_ray_space(tri.b), c = to_ray_space(tri.c);
+
+  // e_a is twice the signed area of (ray, B, C): the weight of A, and so on.
+  const T e_a = detail::edge_function(c.x, b.y, c.y, b.x);
+  const T e_b = detail::edge_function(a.x, c.y, a.y, c.x);
+  const T e_c = detail::edge_function(b.x, a.y, b.y, a.x);
+  if ((e_a < T(0) || e_b < T(0) || e_c < T(0)) && (e_a > T(0) || e_b > T(0) || e_c > T(0)))
+    return false;  // the ray passes outside an edge
+  const T det = e_a + e_b + e_c;  // twice the projected area; 0: seen edge-on
+  if (!(std::abs(det) > T(0))) return false;
+  const T inv_det = T(1) / det;
+  const T t = (e_a * a.z + e_b * b.z + e_c * c.z) * inv_det;
+  if (!(t > t_min && t < t_max)) return false;
+  // [end]
+
+  // [listing watertight-conservative-t]
+  // Accept t only if it exceeds the bound on its own rounding error, so that t > 0 is certain.
+  // With X, Y, Z the largest |x|, |y|, |z| of the vertices: the shear costs x, y at most
+  // gamma(7)(X + Z) (|sx|, |sy| <= 1 and |q[kz]| <= |z|), z at most gamma(3) Z; an edge function
+  // then errs by 2(gamma(2) X Y + dx Y + X dy), and the sum for t by 3(gamma(3) E Z + de Z + E dz).
+  const T X = max_component(glm::abs(vec3_t<T>(a.x, b.x, c.x)));
+  const T Y = max_component(glm::abs(vec3_t<T>(a.y, b.y, c.y)));
+  const T Z = max_component(glm::abs(vec3_t<T>(a.z, b.z, c.z)));
+  const T E = max_component(glm::abs(vec3_t<T>(e_a, e_b, e_c)));
+  const T dx = gamma<T>(7) * (X + Z), dy = gamma<T>(7) * (Y + Z), dz = gamma<T>(3) * Z;
+  const T de = T(2) * (gamma<T>(2) * X * Y + dx * Y + X * dy);
+  const T dt = T(3) * (gamma<T>(3) * E * Z + de * Z + E * dz) * std::abs(inv_det);
+  if (!(t > dt)) return false;
+  fill_triangle_hit(tri, r, t, e_b * inv_det, e_c * inv_det, rec);
+  return true;
+  // [end]
+}
+
+// The method a program picks at run time (chapter 1.5's --method).
+enum class triangle_method { edge_tests, moller_trumbore, watertight };
+
+constexpr std::string_view name(triangle_method m) {
+  switch (m) {
+    case triangle_method::edge_tests: return "edge";
+    case triangle_method::moller_trumbore: return "mt";
+    case triangle_method::watertight: return "watertight";
+  }
+  return "?";
+}
+
+template <class T>
+bool intersect(const triangle_t<T>& tri, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& rec,
+               triangle_method m) {
+  switch (m) {
+    case triangle_method::edge_tests: return intersect_edge_tests(tri, r, t_min, t_max, rec);
+    case triangle_method::moller_trumbore:
+      return intersect_moller_trumbore(tri, r, t_min, t_max, rec);
+    case triangle_method::watertight: return intersect_watertight(tri, r, t_min, t_max, rec);
+  }
+  return false;
+}
+
+// The default: watertight.
+template <class T>
+bool intersect(const triangle_t<T>& tri, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& rec) {
+  return intersect_watertight(tri, r, t_min, t_max, rec);
+}
+
+template <class T> bool occludes(const triangle_t<T>& tri, const ray_t<T>& r, T t_min, T t_max) {
+  hit_t<T> ignored;
+  return intersect(tri, r, t_min, t_max, ignored);
+}
 
 }  // namespace zraka

@@ -1,0 +1,476 @@
+// Ray-triangle intersection (triangle.hpp): the three methods, their agreement, cracks on shared
+// edges and vertices, slivers, degenerate and non-finite input, bounds, and reintersection of
+// spawned rays.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+#include <zraka/rng.hpp>
+#include <zraka/spawn.hpp>
+#include <zraka/triangle.hpp>
+
+using namespace zraka;
+
+namespace {
+
+constexpr std::array<triangle_method, 3> methods = {
+    triangle_method::edge_tests, triangle_method::moller_trumbore, triangle_method::watertight};
+
+template <class T>
+vec3_t<T> random_unit(rng& g) {
+  const double z = 2 * g.uniform() - 1, phi = 2 * pi<double> * g.uniform();
+  const double s = std::sqrt(std::max(0.0, 1 - z * z));
+  return vec3_t<T>(vec3(s * std::cos(phi), s * std::sin(phi), z));
+}
+
+// A message line for MESSAGE (doctest streams only one value).
+template <class... A>
+std::string cat(const A&... a) {
+  std::ostringstream s;
+  s.precision(3);
+  (s << ... << a);
+  return s.str();
+}
+template <class T>
+const char* type_name() {
+  return sizeof(T) == 4 ? "float" : "double";
+}
+
+// 10^x with x uniform in [lo, hi]
+double log_uniform(rng& g, double lo, double hi) {
+  return std::pow(10.0, lo + (hi - lo) * g.uniform());
+}
+
+template <class T>
+bool hits(const triangle_t<T>& tri, const ray_t<T>& r, triangle_method m) {
+  hit_t<T> h;
+  return intersect(tri, r, T(0), infinity<T>, h, m);
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("every method hits a triangle where it should and fills the record", T, float,
+                   double) {
+  const triangle_t<T> tri{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
+  const ray_t<T> r({T(0.5), T(0.25), T(3)}, {0, 0, -1});
+  for (auto m : methods) {
+    CAPTURE(name(m));
+    hit_t<T> h;
+    REQUIRE(intersect(tri, r, T(0), infinity<T>, h, m));
+    // Every quantity here is a short dyadic fraction, so all methods give it exactly.
+    CHECK(h.t == T(3));
+    CHECK(h.uv.x == T(0.25));
+    CHECK(h.uv.y == T(0.125));
+    CHECK(h.p == vec3_t<T>(T(0.5), T(0.25), T(0)));
+    CHECK(h.normal == vec3_t<T>(0, 0, 1));
+    CHECK(h.front_face);
+    // From below: a hit on the back face, normal unchanged, front_face false.
+    REQUIRE(intersect(tri, ray_t<T>({T(0.5), T(0.25), T(-1)}, {0, 0, 1}), T(0), infinity<T>, h, m));
+    CHECK(h.t == T(1));
+    CHECK_FALSE(h.front_face);
+    // Outside each edge, and behind the origin (the t < 0 test Listing 1.12 lacks: errata B2).
+    CHECK_FALSE(hits(tri, ray_t<T>({T(-0.5), T(0.5), T(3)}, {0, 0, -1}), m));
+    CHECK_FALSE(hits(tri, ray_t<T>({T(0.5), T(-0.5), T(3)}, {0, 0, -1}), m));
+    CHECK_FALSE(hits(tri, ray_t<T>({T(1.5), T(1.5), T(3)}, {0, 0, -1}), m));
+    CHECK_FALSE(hits(tri, ray_t<T>({T(0.5), T(0.25), T(3)}, {0, 0, 1}), m));
+  }
+  // The default intersect() is the watertight method.
+  hit_t<T> h;
+  CHECK(intersect(tri, r, T(0), infinity<T>, h));
+}
+
+TEST_CASE_TEMPLATE("t_min and t_max bound the hit (open interval)", T, float, double) {
+  const triangle_t<T> tri{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+  const ray_t<T> r({0, 0, 2}, {0, 0, -1});  // hits at t = 2 exactly
+  for (auto m : methods) {
+    CAPTURE(name(m));
+    hit_t<T> h;
+    CHECK(intersect(tri, r, T(1.5), T(2.5), h, m));
+    CHECK_FALSE(intersect(tri, r, T(2), T(3), h, m));  // t == t_min is excluded
+    CHECK_FALSE(intersect(tri, r, T(0), T(2), h, m));  // t == t_max is excluded
+    CHECK(intersect(tri, r, std::nextafter(T(2), T(0)), T(3), h, m));
+    CHECK(intersect(tri, r, T(0), std::nextafter(T(2), T(3)), h, m));
+    CHECK_FALSE(intersect(tri, r, T(2.5), infinity<T>, h, m));
+  }
+}
+
+TEST_CASE_TEMPLATE("degenerate triangles and NaN/inf input are never hit", T, float, double) {
+  const T nan = std::numeric_limits<T>::quiet_NaN(), inf = infinity<T>;
+  const std::vector<triangle_t<T>> bad = {{{0, 0, 0}, {0, 0, 0}, {1, 1, 0}},  // two equal vertices
+                                          {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}},  // a point
+                                          {{-1, -2, -3}, {1, 2, 3}, {2, 4, 6}},  // collinear
+                                          {{0, 0, 0}, {1, 0, 0}, {nan, 1, 0}},   // NaN vertex
+                                          {{0, 0, 0}, {inf, 0, 0}, {0, 1, 0}},   // infinite vertex
+                                          {{-inf, -inf, 0}, {inf, -inf, 0}, {0, inf, 0}}};
+  for (auto m : methods) {
+    CAPTURE(name(m));
+    for (const auto& tri : bad) {
+      // Rays from many directions through the line or point the triangle collapses to.
+      rng g(7);
+      for (int i = 0; i < 200; ++i) {
+        const vec3_t<T> target = vec3_t<T>(T(g.uniform()), T(2 * g.uniform()), T(0));
+        const vec3_t<T> o = target + T(3) * random_unit<T>(g);
+        CHECK_FALSE(hits(tri, ray_t<T>(o, target - o), m));
+      }
+    }
+    const triangle_t<T> good{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    ray_t<T> r({0, 0, 1}, {0, 0, -1});
+    r.origin.x = nan;
+    CHECK_FALSE(hits(good, r, m));
+    r.origin.x = inf;
+    CHECK_FALSE(hits(good, r, m));
+    CHECK_FALSE(hits(good, ray_t<T>({0, 0, 1}, {0, 0, 0}), m));     // zero direction
+    CHECK_FALSE(hits(good, ray_t<T>({0, 0, 1}, {nan, 0, -1}), m));  // NaN direction
+    ray_t<T> raw({0, 0, 1}, {0, 0, -1});
+    raw.direction = {nan, nan, nan};  // set by hand, past the constructor's check
+    CHECK_FALSE(hits(good, raw, m));
+  }
+}
+
+TEST_CASE_TEMPLATE("rays parallel to the triangle's plane, above it or in it, do not hit", T, float,
+                   double) {
+  const triangle_t<T> tri{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  for (auto m : methods) {
+    CAPTURE(name(m));
+    CHECK_FALSE(hits(tri, ray_t<T>({-1, T(0.25), T(0.5)}, {1, 0, 0}), m));     // above
+    CHECK_FALSE(hits(tri, ray_t<T>({-1, T(0.25), T(0)}, {1, 0, 0}), m));       // in the plane
+    CHECK_FALSE(hits(tri, ray_t<T>({-1, -1, T(0)}, {1, 1, 0}), m));            // in it, diagonal
+    CHECK_FALSE(hits(tri, ray_t<T>({T(0.25), T(0.25), T(0)}, {1, 2, 0}), m));  // from inside
+  }
+}
+
+TEST_CASE_TEMPLATE("the three methods agree on random rays and triangles", T, float, double) {
+  // Tolerances: the methods round differently; for well-shaped triangles (smallest height at
+  // least 1/10 of the longest edge) hit at |cos| >= 0.05, t and the barycentrics are
+  // conditioned to about 1e3 ulp, so we allow 4e-4 (float) and 1e-12 (double), relative to t
+  // and absolute for the barycentrics (which are at most 1). Rays aimed within that tolerance of
+  // an edge may fairly be called hits by one method and misses by another: they are skipped.
+  const T tol = sizeof(T) == 4 ? T(4e-4) : T(1e-12);
+  rng g(2024);
+  int compared = 0, both_hit = 0, disagree = 0;
+  T worst_t = 0, worst_uv = 0;
+  while (compared < 20000) {
+    triangle_t<T> tri{random_unit<T>(g), random_unit<T>(g), random_unit<T>(g)};
+    const vec3_t<T> n = glm::cross(tri.b - tri.a, tri.c - tri.a);
+    const T longest = std::max(
+        {glm::length(tri.b - tri.a), glm::length(tri.c - tri.b), glm::length(tri.a - tri.c)});
+    if (glm::length(n) / longest < T(0.1) * longest) continue;  // height = |n| / edge
+    const T u = T(-0.25 + 1.5 * g.uniform()), v = T(-0.25 + 1.5 * g.uniform());
+    const T w = 1 - u - v;
+    const vec3_t<T> target = w * tri.a + u * tri.b + v * tri.c;
+    const vec3_t<T> o = target + T(1 + 9 * g.uniform()) * random_unit<T>(g);
+    const ray_t<T> r(o, target - o);
+    if (std::abs(glm::dot(glm::normalize(n), r.direction)) < T(0.05)) continue;
+    if (std::min({std::abs(u), std::abs(v), std::abs(w)}) < T(10) * tol) continue;  // near an edge
+    ++compared;
+    std::array<hit_t<T>, 3> h;
+    std::array<bool, 3> hit{};
+    for (int i = 0; i < 3; ++i) hit[i] = intersect(tri, r, T(0), infinity<T>, h[i], methods[i]);
+    const bool inside = u > 0 && v > 0 && w > 0;
+    if (hit[0] != inside || hit[1] != inside || hit[2] != inside) ++disagree;
+    if (hit[0] && hit[1] && hit[2]) {
+      ++both_hit;
+      for (int i = 0; i < 2; ++i) {
+        worst_t = std::max(worst_t, std::abs(h[i].t - h[2].t) / h[2].t);
+        worst_uv =
+            std::max({worst_uv, std::abs(h[i].uv.x - h[2].uv.x), std::abs(h[i].uv.y - h[2].uv.y)});
+      }
+      worst_uv = std::max({worst_uv, std::abs(h[2].uv.x - u), std::abs(h[2].uv.y - v)});
+    }
+  }
+  MESSAGE(cat(type_name<T>(), ": ", compared, " rays, ", both_hit, " hit by all three; ", disagree,
+              " hit/miss disagreements; worst relative t difference ", worst_t,
+              ", worst barycentric difference ", worst_uv));
+  CHECK(disagree == 0);
+  CHECK(both_hit > 4000);
+  CHECK(worst_t <= tol);
+  CHECK(worst_uv <= tol);
+}
+
+TEST_CASE_TEMPLATE("watertight edge functions have exact signs", T, float, double) {
+  // a = b = 1 + 2^-k: a b = 1 + 2^(1-k) + 2^-2k rounds to 1 + 2^(1-k) = c d, so a b - c d rounds
+  // to 0 (or, fused into an FMA, to a value of either sign) while the exact value is 2^-2k > 0.
+  const int k = std::numeric_limits<T>::digits / 2;
+  const T a = T(1) + std::ldexp(T(1), -k), c = T(1) + std::ldexp(T(1), 1 - k), d = T(1);
+  CHECK(detail::edge_function(a, a, c, d) == std::ldexp(T(1), -2 * k));  // exact here
+  CHECK(detail::edge_function(c, d, a, a) == -std::ldexp(T(1), -2 * k));  // and antisymmetric
+  CHECK(detail::edge_function(c, d, c, d) == T(0));
+  CHECK(detail::edge_function(T(3), T(5), T(5), T(3)) == T(0));
+  // Far from 0 the plain value is kept.
+  CHECK(detail::edge_function(T(3), T(4), T(1), T(2)) == T(10));
+}
+
+namespace {
+
+// A closed fan of n triangles around a centre vertex, as a cone (the centre raised by h), rim
+// vertices on a circle rounded to the grid `q` (so every coordinate is exactly representable).
+template <class T>
+std::vector<triangle_t<T>> fan(int n, T radius, T h, T q, vec3_t<T> shift) {
+  std::vector<vec3_t<T>> rim;
+  for (int k = 0; k < n; ++k) {
+    const double th = 2 * pi<double> * k / n;
+    rim.push_back(shift + vec3_t<T>(T(std::round(radius * std::cos(th) / q) * q),
+                                    T(std::round(radius * std::sin(th) / q) * q), T(0)));
+  }
+  std::vector<triangle_t<T>> tris;
+  for (int k = 0; k < n; ++k)
+    tris.push_back({shift + vec3_t<T>(0, 0, h), rim[k], rim[(k + 1) % n]});
+  return tris;
+}
+
+// A grid of n x n quads, each split into two triangles along a diagonal; heights z = small
+// dyadic bumps. The grid starts at `corner`, cells `cell` wide.
+template <class T>
+std::vector<triangle_t<T>> grid(int n, T cell, vec3_t<T> corner) {
+  auto vtx = [&](int i, int j) {
+    return corner + vec3_t<T>(T(i) * cell, T(j) * cell, T(((i * 7 + j * 3) % 5)) * cell / T(8));
+  };
+  std::vector<triangle_t<T>> tris;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      tris.push_back({vtx(i, j), vtx(i + 1, j), vtx(i + 1, j + 1)});
+      tris.push_back({vtx(i, j), vtx(i + 1, j + 1), vtx(i, j + 1)});
+    }
+  return tris;
+}
+
+// Points on the shared (interior) edges and vertices of a mesh: every 1/8 of every edge that two
+// triangles share, and every vertex all of whose edges are shared (so not on the boundary).
+template <class T>
+std::vector<vec3_t<T>> shared_points(const std::vector<triangle_t<T>>& tris) {
+  std::vector<std::pair<vec3_t<T>, vec3_t<T>>> edges;
+  for (const auto& t : tris) {
+    const std::array<vec3_t<T>, 3> v = {t.a, t.b, t.c};
+    for (int i = 0; i < 3; ++i) edges.emplace_back(v[i], v[(i + 1) % 3]);
+  }
+  auto shared = [&](const std::pair<vec3_t<T>, vec3_t<T>>& e) {
+    for (const auto& f : edges)
+      if (f.first == e.second && f.second == e.first) return true;
+    return false;
+  };
+  std::vector<vec3_t<T>> pts, boundary;
+  for (const auto& e : edges) {
+    if (!shared(e)) {
+      boundary.push_back(e.first);
+      boundary.push_back(e.second);
+      continue;
+    }
+    const auto& a = e.first;
+    const auto& b = e.second;
+    if (std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z))
+      continue;  // each shared edge once (it appears in both directions)
+    for (int s = 1; s < 8; ++s) pts.push_back(e.first + (T(s) / T(8)) * (e.second - e.first));
+  }
+  for (const auto& e : edges) {
+    bool inner = std::find(boundary.begin(), boundary.end(), e.first) == boundary.end();
+    for (const auto& p : pts) inner = inner && p != e.first;  // once per vertex
+    if (inner) pts.push_back(e.first);
+  }
+  return pts;
+}
+
+struct crack_count {
+  long rays = 0, cracks = 0;
+};
+
+// Rays at each target: straight down (exact: axis direction, target exactly on the edge) and
+// from `origins` random points above (the normalised direction passes within rounding of it).
+// The meshes are height fields with slopes below 1/2 and the rays descend at 45 degrees or
+// steeper, so each ray crosses the surface at its target: missing every triangle is a crack.
+template <class T>
+crack_count count_cracks(const std::vector<triangle_t<T>>& tris, triangle_method m,
+                         const std::vector<vec3_t<T>>& targets, T height, int origins,
+                         std::uint64_t seed) {
+  crack_count c;
+  rng g(seed);
+  for (const auto& target : targets) {
+    for (int k = -1; k < origins; ++k) {
+      vec3_t<T> o = target + vec3_t<T>(0, 0, height);
+      if (k >= 0) {
+        vec3_t<T> d = random_unit<T>(g);
+        d.z = std::abs(d.z) + T(1);  // steeper than any facet: no ray only grazes a vertex
+        o = target + height * d;
+      }
+      const ray_t<T> r(o, target - o);
+      bool any = false;
+      for (const auto& tri : tris) any = any || hits(tri, r, m);
+      ++c.rays;
+      c.cracks += any ? 0 : 1;
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("watertight: no cracks on shared edges and vertices of fans and grids", T, float,
+                   double) {
+  struct mesh {
+    const char* what;
+    std::vector<triangle_t<T>> tris;
+    T height;
+  };
+  // Away from the origin the coordinates carry fewer fraction bits, which is where the
+  // non-watertight methods lose rays.
+  const std::vector<mesh> meshes = {
+      {"fan of 16 at 0", fan<T>(16, T(1), T(0.25), T(1) / 1024, {0, 0, 0}), T(3)},
+      {"fan of 64 at 0, flat", fan<T>(64, T(1), T(0), T(1) / 1024, {0, 0, 0}), T(3)},
+      {"fan of 48 at (1000, 3000, 500)", fan<T>(48, T(2), T(0.5), T(1) / 256, {1000, 3000, 500}),
+       T(5)},
+      {"grid 8x8 at 0", grid<T>(8, T(0.25), {0, 0, 0}), T(4)},
+      {"grid 8x8 at (4096, -2048, 100)", grid<T>(8, T(0.375), {4096, -2048, 100}), T(6)}};
+  for (const auto& mesh : meshes) {
+    const auto targets = shared_points(mesh.tris);
+    REQUIRE(targets.size() > 50);
+    std::array<crack_count, 3> c;
+    for (int i = 0; i < 3; ++i)
+      c[i] = count_cracks(mesh.tris, methods[i], targets, mesh.height, 6, 99);
+    MESSAGE(cat(type_name<T>(), " ", mesh.what, ": ", c[0].rays, " rays; cracks: edge ",
+                c[0].cracks, ", mt ", c[1].cracks, ", watertight ", c[2].cracks));
+    CHECK(c[2].cracks == 0);
+  }
+}
+
+TEST_CASE_TEMPLATE("slivers: thin triangles are hit, agree, and stay watertight", T, float,
+                   double) {
+  // Heights down to 1e-6 (float: 1e-4) of the length: n is tiny but non-zero, so they are real
+  // triangles. Barycentrics along the long edge are well conditioned: tolerance as above.
+  const T tol = sizeof(T) == 4 ? T(4e-4) : T(1e-12);
+  for (T thin : {T(1e-2), T(1e-4), sizeof(T) == 4 ? T(1e-4) : T(1e-6)}) {
+    CAPTURE(thin);
+    const triangle_t<T> lower{{0, 0, 0}, {1, 0, 0}, {T(0.5), thin, 0}};
+    const triangle_t<T> upper{{1, 0, 0}, {0, 0, 0}, {T(0.5), -thin, 0}};  // shares edge AB
+    for (auto m : methods) {
+      CAPTURE(name(m));
+      hit_t<T> h;
+      REQUIRE(
+          intersect(lower, ray_t<T>({T(0.5), thin / 4, 1}, {0, 0, -1}), T(0), infinity<T>, h, m));
+      CHECK(std::abs(h.uv.y - T(0.25)) <= tol);  // weight of C: a quarter of the height
+      CHECK(std::abs(h.uv.x - T(0.375)) <= tol);
+    }
+    // Rays exactly along the shared edge's points, from oblique directions.
+    rng g(5);
+    long cracks = 0;
+    for (int i = 0; i < 500; ++i) {
+      const vec3_t<T> target(T(1 + (i % 63)) / T(64), 0, 0);
+      vec3_t<T> d = random_unit<T>(g);
+      d.z = std::abs(d.z) + T(0.1);
+      const ray_t<T> r(target + d, -d);
+      cracks += (hits(lower, r, triangle_method::watertight) ||
+                 hits(upper, r, triangle_method::watertight))
+                    ? 0
+                    : 1;
+    }
+    CHECK(cracks == 0);
+  }
+}
+
+namespace {
+
+struct reintersection {
+  long spawned = 0, self_hits = 0, sliver_self_hits = 0, primary_misses = 0;
+  double worst_offset = 0;  // largest offset / triangle size seen
+};
+
+// Random triangles with positions |c| log-uniform in [1e-8, 1e8] and sizes from 1e-3 (float)
+// or 1e-5 (double) to 1e2 times |c|, half of them slivers; a primary ray hits each, and
+// `per_hit` rays leave the hit by spawn_ray, half on each side, half of them grazing. None of
+// them may hit the triangle again.
+template <class T>
+reintersection reintersect(triangle_method m, int triangles, int per_hit) {
+  reintersection out;
+  rng g(12345);
+  const double min_rel = sizeof(T) == 4 ? -3 : -5;
+  for (int i = 0; i < triangles; ++i) {
+    const double pos = log_uniform(g, -8, 8);
+    const double size = pos * log_uniform(g, min_rel, 2);
+    const vec3 c = pos * vec3(random_unit<double>(g));
+    triangle_t<T> tri{vec3_t<T>(c + size * vec3(random_unit<double>(g))),
+                      vec3_t<T>(c + size * vec3(random_unit<double>(g))),
+                      vec3_t<T>(c + size * vec3(random_unit<double>(g)))};
+    if (i % 2)  // every other one a sliver: C within 1e-1 ... 1e-3 (float) or 1e-5 of line AB
+      tri.c = vec3_t<T>(vec3(tri.a) + g.uniform() * (vec3(tri.b) - vec3(tri.a)) +
+                        size * log_uniform(g, min_rel, -1) * vec3(random_unit<double>(g)));
+    const double u = 0.05 + 0.9 * g.uniform(), v = (1 - u) * (0.05 + 0.9 * g.uniform());
+    const vec3 target = (1 - u - v) * vec3(tri.a) + u * vec3(tri.b) + v * vec3(tri.c);
+    const vec3 o = target + 4 * size * vec3(random_unit<double>(g));
+    hit_t<T> h;
+    if (!intersect(tri, ray_t<T>(vec3_t<T>(o), vec3_t<T>(target - o)), T(0), infinity<T>, h, m)) {
+      ++out.primary_misses;
+      continue;
+    }
+    out.worst_offset =
+        std::max(out.worst_offset, double(glm::dot(glm::abs(h.normal), h.p_error)) / size);
+    for (int k = 0; k < per_hit; ++k) {
+      vec3_t<T> w = random_unit<T>(g);
+      if (k >= 2)  // grazing: 1e-4 ... 1e-1 radians off the surface
+        w = glm::normalize(w - glm::dot(w, h.normal) * h.normal) +
+            T(log_uniform(g, -4, -1)) * h.normal;
+      if ((glm::dot(w, h.normal) > T(0)) != (k % 2 == 0)) w = -w;  // alternate the sides
+      hit_t<T> again;
+      ++out.spawned;
+      const bool self = intersect(tri, spawn_ray(h, w), T(0), infinity<T>, again, m);
+      out.self_hits += self ? 1 : 0;
+      out.sliver_self_hits += self && i % 2 ? 1 : 0;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("rays spawned from a triangle never hit it again (1e-8 ... 1e8)", T, float,
+                   double) {
+  for (auto m : methods) {
+    const reintersection r = reintersect<T>(m, 1500, 4);
+    MESSAGE(cat(type_name<T>(), " ", name(m), ": ", r.spawned, " spawned rays, ", r.self_hits,
+                " hit their own triangle again (", r.sliver_self_hits,
+                " of them slivers); primary misses ", r.primary_misses, "; largest offset/size ",
+                r.worst_offset));
+    CHECK(r.spawned >= 4000);
+    // The primary ray is aimed well inside: every method must hit it (float: within 1e-3
+    // relative size a few may be lost to the shear's rounding; see the book).
+    CHECK(r.primary_misses <= 15);
+    if (m == triangle_method::watertight) CHECK(r.self_hits == 0);
+  }
+}
+
+TEST_CASE_TEMPLATE("the hit point lies within p_error of the triangle's plane", T, float, double) {
+  // The exact plane distance is computed in long double from the stored vertices; the computed
+  // point must be within dot(|n|, p_error), the offset spawn_ray moves it by.
+  rng g(77);
+  double worst_ratio = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const double pos = log_uniform(g, -8, 8), size = pos * log_uniform(g, -3, 2);
+    const vec3 c = pos * vec3(random_unit<double>(g));
+    const triangle_t<T> tri{vec3_t<T>(c + size * vec3(random_unit<double>(g))),
+                            vec3_t<T>(c + size * vec3(random_unit<double>(g))),
+                            vec3_t<T>(c + size * vec3(random_unit<double>(g)))};
+    const vec3 target = (vec3(tri.a) + vec3(tri.b) + vec3(tri.c)) / 3.0;
+    const vec3 o = target + 3 * size * vec3(random_unit<double>(g));
+    hit_t<T> h;
+    if (!intersect(tri, ray_t<T>(vec3_t<T>(o), vec3_t<T>(target - o)), T(0), infinity<T>, h))
+      continue;
+    using L = long double;
+    const L ax = tri.a.x, ay = tri.a.y, az = tri.a.z;
+    const L e1[3] = {L(tri.b.x) - ax, L(tri.b.y) - ay, L(tri.b.z) - az};
+    const L e2[3] = {L(tri.c.x) - ax, L(tri.c.y) - ay, L(tri.c.z) - az};
+    const L n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                    e1[0] * e2[1] - e1[1] * e2[0]};
+    const L len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const L dist =
+        std::abs(((L(h.p.x) - ax) * n[0] + (L(h.p.y) - ay) * n[1] + (L(h.p.z) - az) * n[2]) / len);
+    const double bound = glm::dot(glm::abs(h.normal), h.p_error);
+    REQUIRE(bound > 0);
+    worst_ratio = std::max(worst_ratio, double(dist) / bound);
+  }
+  MESSAGE(cat(type_name<T>(),
+              ": worst (distance of p from the plane) / (spawn offset) = ", worst_ratio));
+  CHECK(worst_ratio < 1);
+}
