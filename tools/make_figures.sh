@@ -11,8 +11,41 @@ trap 'rm -rf "$work"' EXIT
 cd "$work"
 
 # --- 1.0-1.2
+"$bin/sphere" --width 320 --height 240 --out sphere >/dev/null && cp sphere.png "$fig/1.2-sphere.png"
 # --- 1.3-1.4
+"$bin/bezier" --samples 200000 --out 1.3-bezier.png --obj patch.obj >/dev/null && cp 1.3-bezier.png "$fig/"
+"$bin/normals" --out 1.4-normals.png >/dev/null && cp 1.4-normals.png "$fig/"
 # --- 1.5
+"$bin/intersections" --width 400 --height 300 --rays 20000 --out 1.5-intersections.png && cp 1.5-intersections.png "$fig/"
+"$bin/intersections" --mask --width 400 --height 300 --rays 20000 --out 1.5-mask.png && cp 1.5-mask.png "$fig/"
 # --- 1.6
+# Convergence plots: the chapter writes CSVs, tools/plot_convergence.py (matplotlib, in the venv
+# that tools/plot-setup.sh makes) draws them.
+if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
+  "$bin/monte-carlo" --max-log2n 22 --csv-dir . > /dev/null
+  mc_plot=("${bin%/build/bin}/build/plot-venv/bin/python" "${bin%/build/bin}/tools/plot_convergence.py")
+  "${mc_plot[@]}" 1.6-pi.csv -o "$fig/1.6-pi.png" --labels "dart throwing" \
+    --title 'Estimating $\pi$ by dart throwing'
+  "${mc_plot[@]}" 1.6-x2-uniform.csv 1.6-x2-linear.csv -o "$fig/1.6-x2.png" \
+    --labels 'uniform,$p(x)=x/2$' --title '$\int_0^2 x^2\,dx$: uniform and importance sampling'
+  "${mc_plot[@]}" 1.6-sinx2-uniform.csv 1.6-sinx2-importance.csv -o "$fig/1.6-sinx2.png" \
+    --labels 'uniform,$p(x)=3x^2$' --title '$\int_0^1 \sin(x^2)\,dx$: uniform and importance sampling'
+else
+  echo "make_figures: no matplotlib venv, skipping the 1.6 plots" >&2
+fi
 # --- 1.7-1.9
+"$bin/reflection" --width 320 --height 160 --spp 128 --out 1.7-reflection >/dev/null && cp 1.7-reflection.png "$fig/"
+"$bin/refraction" --width 320 --height 200 --spp 128 --out 1.8-refraction >/dev/null && cp 1.8-refraction.png "$fig/"
+"$bin/bxdf" --out 1.9-bxdf >/dev/null && cp 1.9-bxdf.png "$fig/"
 # --- 5.1, 5.3
+"$bin/antialiasing" --out 5.1-antialiasing >/dev/null && cp 5.1-antialiasing.png "$fig/"
+"$bin/importance" --out 5.3-importance >/dev/null && cp 5.3-importance.png "$fig/"
+if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
+  aa_plot=("${bin%/build/bin}/build/plot-venv/bin/python" "${bin%/build/bin}/tools/plot_convergence.py")
+  "${aa_plot[@]}" 5.1-antialiasing-{regular,uniform,stratified}.csv -o "$fig/5.1-rmse.png" \
+    --labels "regular,uniform,stratified" --title "Anti-aliasing: RMSE of the pixel integral"
+  "${aa_plot[@]}" 5.3-importance-{uniform,cosine,light,mixture}.csv -o "$fig/5.3-error.png" \
+    --labels "uniform,cosine,light,mixture" --title "Direct light: RMSE by sampling strategy"
+else
+  echo "make_figures: no matplotlib venv, skipping the 5.1 and 5.3 plots" >&2
+fi

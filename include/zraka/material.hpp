@@ -1,0 +1,167 @@
+#pragma once
+// Materials (book 1.7-1.9, 2.3): plain data saying what a surface does with light, plus the few
+// functions a renderer asks of it:
+//   emitted(m, h)                 light the surface gives off towards the ray (emitters only);
+//   scatter(m, d, h, g)           a new direction and the path weight f cos / pdf, or none when
+//                                 the light is absorbed;
+//   brdf_cos(m, h, wo, wi)        f(wo, wi) |cos theta_i| for light sampling (next-event
+//                                 estimation); zero for the specular materials, which have no
+//                                 density to evaluate (a mirror reflects one direction only);
+//   scatter_pdf(m, h, wo, wi)     the density scatter() samples wi with, for multiple importance
+//                                 sampling; zero for the specular materials.
+// Directions: d is the incoming ray direction (towards the surface), wo = -d, wi points away.
+// The kinds follow the book: lambertian (cosine-weighted, erratum C1), fuzzy_metal (the thesis's
+// "diffuse", RTIOW's fuzzy metal; a mirror is fuzz 0), dielectric (glass, exact Fresnel and
+// total internal reflection), emitter (an area light) and phong (kd, ks, shininess: the local
+// model of book 1.9 for the Whitted tracer, and its energy-normalised BRDF for path tracing).
+// A material is data, so a scene file can describe it field by field.
+#include <zraka/bxdf.hpp>
+#include <zraka/hit.hpp>
+#include <zraka/optics.hpp>
+#include <zraka/rng.hpp>
+#include <zraka/sampling.hpp>
+#include <zraka/texture.hpp>
+
+#include <cmath>
+#include <optional>
+
+namespace zraka {
+
+enum class material_kind { lambertian, fuzzy_metal, dielectric, emitter, phong };
+
+struct material {
+  material_kind kind = material_kind::lambertian;
+  texture albedo = texture::solid(rgb(0.8f));  // lambertian, fuzzy_metal
+  double fuzz = 0;                             // fuzzy_metal: 0 = mirror
+  double ior = 1.5;                            // dielectric: index inside (outside is 1)
+  rgb radiance{0};                             // emitter
+  rgb kd{0.8f}, ks{0.2f};                      // phong
+  double shininess = 32;                       // phong exponent p
+
+  static material lambertian(rgb albedo) { return lambertian(texture::solid(albedo)); }
+  static material lambertian(texture albedo) {
+    material m;
+    m.albedo = albedo;
+    return m;
+  }
+  static material fuzzy_metal(rgb albedo, double fuzz) {
+    material m;
+    m.kind = material_kind::fuzzy_metal;
+    m.albedo = texture::solid(albedo);
+    m.fuzz = fuzz;
+    return m;
+  }
+  static material mirror(rgb albedo = rgb(1)) { return fuzzy_metal(albedo, 0.0); }
+  static material dielectric(double ior) {
+    material m;
+    m.kind = material_kind::dielectric;
+    m.ior = ior;
+    return m;
+  }
+  static material emitter(rgb radiance) {
+    material m;
+    m.kind = material_kind::emitter;
+    m.radiance = radiance;
+    m.albedo = texture::solid(rgb(0));
+    return m;
+  }
+  static material phong(rgb kd, rgb ks, double shininess) {
+    material m;
+    m.kind = material_kind::phong;
+    m.kd = kd;
+    m.ks = ks;
+    m.shininess = shininess;
+    return m;
+  }
+};
+
+// Mirror, fuzzy metal and glass scatter into a direction (or a narrow lobe) that light sampling
+// cannot hit by chance: renderers skip next-event estimation there and follow the scattered ray.
+inline bool is_specular(const material& m) {
+  return m.kind == material_kind::fuzzy_metal || m.kind == material_kind::dielectric;
+}
+
+// Emitters shine from their front face only (a quad light faces along its normal).
+template <class T> rgb emitted(const material& m, const hit_t<T>& h) {
+  return m.kind == material_kind::emitter && h.front_face ? m.radiance : rgb(0);
+}
+
+template <class T> struct scatter_t {
+  vec3_t<T> direction;  // unit, away from the surface
+  rgb weight;           // f |cos| / pdf, what the path throughput is multiplied by
+  T pdf = T(0);         // density of direction; 0 for specular (a delta, not evaluable)
+  bool specular = false;
+};
+
+// The BRDF of a non-specular material at a hit: Lambert (rho/pi, with the texture's albedo
+// there) or, for phong, Lambert plus the energy-normalised Phong lobe (bxdf.hpp). The local
+// model's (V.R)^p is not a BRDF; a path tracer uses this normalised form of the same lobe.
+template <class T> lambert_phong_brdf_t<T> brdf_at(const material& m, const hit_t<T>& h) {
+  lambert_phong_brdf_t<T> f;
+  if (m.kind == material_kind::lambertian) {
+    f.diffuse.rho = vec3_t<T>(evaluate(m.albedo, h.p, h.facing_normal()));
+    f.glossy.rho_s = vec3_t<T>(0);
+  } else {
+    f.diffuse.rho = vec3_t<T>(m.kd);
+    f.glossy.rho_s = vec3_t<T>(m.ks);
+    f.glossy.s = T(m.shininess);
+  }
+  return f;
+}
+
+// [listing brdf-cos]
+template <class T>
+rgb brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const vec3_t<T>& wi) {
+  if (m.kind != material_kind::lambertian && m.kind != material_kind::phong) return rgb(0);
+  const vec3_t<T> n = h.facing_normal();
+  return rgb(brdf_at(m, h).eval(wi, wo, n) * std::max(T(0), glm::dot(n, wi)));
+}
+// [end]
+
+template <class T>
+T scatter_pdf(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const vec3_t<T>& wi) {
+  if (m.kind != material_kind::lambertian && m.kind != material_kind::phong) return T(0);
+  return brdf_at(m, h).pdf(wi, wo, h.facing_normal());
+}
+
+// [listing scatter]
+template <class T>
+std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const hit_t<T>& h, rng& g) {
+  const vec3_t<T> n = h.facing_normal();  // on the side the ray came from
+  switch (m.kind) {
+    case material_kind::lambertian: {  // cosine-weighted: f cos / pdf = albedo exactly
+      const lambert_brdf_t<T> f{vec3_t<T>(evaluate(m.albedo, h.p, n))};
+      const auto sm = f.sample(-d, n, vec2_t<T>(g.uniform2()));
+      if (!sm) return std::nullopt;  // grazing: d along the surface, or rounding on the horizon
+      return scatter_t<T>{sm->wi, rgb(sm->weight), sm->pdf, false};
+    }
+    case material_kind::phong: {  // Lambert + normalised Phong, sampled as their mixture
+      const auto sm = brdf_at(m, h).sample(-d, n, vec2_t<T>(g.uniform2()));
+      if (!sm) return std::nullopt;  // sampled below the surface: absorbed
+      return scatter_t<T>{sm->wi, rgb(sm->weight), sm->pdf, false};
+    }
+    case material_kind::fuzzy_metal: {  // mirror direction + fuzz * point in the unit ball
+      const vec3_t<T> ball = sample_unit_ball(vec3_t<T>(g.uniform(), g.uniform(), g.uniform()));
+      const auto wi = fuzzy_mirror(d, n, T(m.fuzz), ball);
+      if (!wi) return std::nullopt;  // pushed below the surface: absorbed
+      return scatter_t<T>{*wi, evaluate(m.albedo, h.p, n), T(0), true};
+    }
+    // Glass: reflect with probability R (exact Fresnel), else refract; the weight is 1 either way.
+    // The eta^2 change of radiance across the boundary is left out: it cancels for every path
+    // that leaves the glass again, which is all of them in the course's scenes.
+    case material_kind::dielectric: {
+      const T eta = relative_ior(h.front_face, T(m.ior));
+      const T cos_i = -glm::dot(d, n);
+      const auto t = refract(d, n, eta);  // none on total internal reflection
+      if (t && T(g.uniform()) >= fresnel_dielectric(cos_i, eta))
+        return scatter_t<T>{*t, rgb(1), T(0), true};
+      return scatter_t<T>{reflect(d, n), rgb(1), T(0), true};
+    }
+    case material_kind::emitter:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+// [end]
+
+}  // namespace zraka

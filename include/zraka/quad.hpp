@@ -1,0 +1,83 @@
+#pragma once
+// A quad: the parallelogram { Q + a u + b v : a, b in [0,1] } with corner Q and edges u, v.
+// Its normal is N = u x v / ||u x v||, so the quad is counter-clockwise seen from the side N
+// points to (the same rule as triangle.hpp). Quads make the floors, walls and area lights of the
+// course's scenes; hits report (a, b) in uv.
+//
+// The intersection first finds the plane hit t = N.(Q - O) / N.D, then the plane coordinates
+// (a, b) of the hit. Two rounding traps are closed explicitly instead of with an epsilon:
+//  * a ray (nearly) parallel to the plane: N.D is within its own rounding error of zero, so its
+//    sign, and the sign of t, mean nothing: no hit;
+//  * a ray starting (nearly) on the plane, e.g. one spawned from this quad: the signed distance
+//    N.(Q - O) is within its rounding error of zero, so we cannot tell which side the origin is
+//    on: no hit. A ray leaving a planar surface can never meet it again, so this is exact.
+// The hit point is rebuilt as Q + a u + b v, which lies on the plane up to the rounding of that
+// one expression; p_error bounds it, and spawn.hpp moves new rays off by that much.
+#include <zraka/hit.hpp>
+#include <zraka/ray.hpp>
+#include <zraka/spawn.hpp>
+
+namespace zraka {
+
+// Named parallelogram_t, not quad_t: glibc's <sys/types.h> already has a global quad_t, which
+// would make `using namespace zraka` ambiguous. The short names are quad and quadf.
+template <class T> struct parallelogram_t {
+  vec3_t<T> corner{T(0)};                      // Q
+  vec3_t<T> u{T(1), T(0), T(0)}, v{T(0), T(1), T(0)};  // edges from Q
+
+  vec3_t<T> normal() const { return normalize_or_zero(glm::cross(u, v)); }
+  T area() const { return glm::length(glm::cross(u, v)); }
+  vec3_t<T> point(T a, T b) const { return corner + a * u + b * v; }
+  // Degenerate (u parallel to v), NaN or infinite quads are never hit.
+  bool valid() const {
+    return is_finite(corner) && is_finite(u) && is_finite(v) && normal() != vec3_t<T>(0);
+  }
+};
+
+using quad = parallelogram_t<double>;
+using quadf = parallelogram_t<float>;
+
+// The nearest hit with t in (t_min, t_max); fills `rec` only on a hit.
+// [listing quad-intersect]
+template <class T>
+bool intersect(const parallelogram_t<T>& q, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& rec) {
+  const vec3_t<T> n_raw = glm::cross(q.u, q.v);
+  const vec3_t<T> N = normalize_or_zero(n_raw);
+  const vec3_t<T> D = r.direction;
+  const T denom = glm::dot(N, D);
+  // Parallel (or NaN): the sign of N.D is lost in its rounding error.
+  if (!(std::abs(denom) > gamma<T>(3) * glm::dot(glm::abs(N), glm::abs(D)))) return false;
+  const vec3_t<T> QO = q.corner - r.origin;
+  const T s = glm::dot(N, QO);  // signed distance from the origin to the plane, along N
+  // Its error: the subtraction and the dot product round (gamma(4) of the magnitudes), and N is
+  // itself a few ulps off perpendicular to u and v (gamma(4) of the distance from Q).
+  const T s_error = gamma<T>(4) * glm::dot(glm::abs(N), glm::abs(q.corner) + glm::abs(r.origin)) +
+                    gamma<T>(4) * glm::length(QO);
+  if (!(std::abs(s) > s_error)) return false;  // origin on the plane: it cannot see this quad
+  const T t = s / denom;
+  if (!(t > t_min && t < t_max)) return false;
+
+  // Plane coordinates: with d = P - Q = a u + b v, a = (d x v).n / |n|^2, b = (u x d).n / |n|^2.
+  const vec3_t<T> d = r.at(t) - q.corner;
+  const vec3_t<T> w = n_raw / glm::dot(n_raw, n_raw);
+  const T a = glm::dot(w, glm::cross(d, q.v));
+  const T b = glm::dot(w, glm::cross(q.u, d));
+  if (!(a >= T(0) && a <= T(1) && b >= T(0) && b <= T(1))) return false;
+  // [end]
+
+  rec.t = t;
+  rec.p = q.point(a, b);
+  // Q + a u + b v: one rounding per product and per sum, three terms (gamma(3), and one spare).
+  rec.p_error = gamma<T>(4) * (glm::abs(q.corner) + glm::abs(a * q.u) + glm::abs(b * q.v));
+  rec.normal = N;
+  rec.uv = {a, b};
+  rec.set_face(D);
+  return true;
+}
+
+template <class T> bool occludes(const parallelogram_t<T>& q, const ray_t<T>& r, T t_min, T t_max) {
+  hit_t<T> ignored;
+  return intersect(q, r, t_min, t_max, ignored);
+}
+
+}  // namespace zraka
