@@ -33,6 +33,14 @@ if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
 else
   echo "make_figures: no matplotlib venv, skipping the 1.6 plots" >&2
 fi
+# --- 3.1-3.3
+"$bin/rasterization" --width 320 --height 240 --out 3.1 >/dev/null && cp 3.1-raster.png "$fig/"
+"$bin/rasterization" --width 64 --height 48 --triangles 0 --out 3.1-square >/dev/null && cp 3.1-square-diff.png "$fig/"
+xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
+"${xvfb[@]}" "$bin/opengl" --frames 3 --screenshot 3.2-triangle.png >/dev/null && cp 3.2-triangle.png "$fig/"
+"${xvfb[@]}" "$bin/opengl" --frames 3 --thesis-stride --screenshot 3.2-thesis-stride.png >/dev/null && cp 3.2-thesis-stride.png "$fig/"
+"${xvfb[@]}" "$bin/tessellation" --frames 3 --level 8 --screenshot 3.2-teapot.png >/dev/null && cp 3.2-teapot.png "$fig/"
+"${xvfb[@]}" "$bin/tessellation" --frames 3 --level 4 --wireframe --screenshot 3.2-teapot-wire.png >/dev/null && cp 3.2-teapot-wire.png "$fig/"
 # --- 1.7-1.9
 "$bin/reflection" --width 320 --height 160 --spp 128 --out 1.7-reflection >/dev/null && cp 1.7-reflection.png "$fig/"
 "$bin/refraction" --width 320 --height 200 --spp 128 --out 1.8-refraction >/dev/null && cp 1.8-refraction.png "$fig/"
