@@ -57,3 +57,7 @@ if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
 else
   echo "make_figures: no matplotlib venv, skipping the 5.1 and 5.3 plots" >&2
 fi
+# --- 5.2
+"$bin/bvh" --divs 32 --out 5.2-bvh >/dev/null && cp 5.2-bvh-heat.png "$fig/"
+# --- assignments (book/assignments): the target images, made by the reference solutions
+"$bin/assignment-01-cylinder-render" --out "${bin%/build/bin}/book/assignments/01-cylinder/target.png" >/dev/null

@@ -10,12 +10,17 @@ smoke.txt holds one or more cases; each starts with a `run:` line:
     file: <name>               the run must have written this non-empty file (PNG/PPM/PFM/CSV
                                files are checked for a valid header)
     absent: <name>             the run must not have left this file behind
+    wrap: <command>            run the program through this command (shell-like quoting), e.g.
+                               `xvfb-run -a -s "-screen 0 1280x720x24"` for an X display, or
+                               `env -u DISPLAY` to take it away; the case is skipped (with a
+                               message) when the command is not installed
 Lines starting with # are comments. Runs happen in the current directory (CTest gives each
 chapter a folder of its own).
 """
 import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 
@@ -33,7 +38,7 @@ def parse(path):
             key, value = key.strip(), value.strip()
             if key == "run":
                 case = {"args": shlex.split(value), "exit": 0, "expect": [], "reject": [],
-                        "file": [], "absent": [], "line": lineno}
+                        "file": [], "absent": [], "wrap": [], "line": lineno}
                 cases.append(case)
             elif case is None:
                 sys.exit(f"{path}:{lineno}: '{key}' before the first 'run:'")
@@ -41,6 +46,8 @@ def parse(path):
                 case["exit"] = int(value)
             elif key in ("expect", "reject", "file", "absent"):
                 case[key].append(value)
+            elif key == "wrap":
+                case["wrap"] = shlex.split(value)
             else:
                 sys.exit(f"{path}:{lineno}: unknown key '{key}'")
     if not cases:
@@ -70,7 +77,10 @@ def main():
         for name in case["file"] + case["absent"]:
             if os.path.exists(name):
                 os.remove(name)
-        cmd = [program] + case["args"]
+        cmd = case["wrap"] + [program] + case["args"]
+        if case["wrap"] and shutil.which(case["wrap"][0]) is None:
+            print(f"$ {shlex.join(cmd)}\nskipped: '{case['wrap'][0]}' is not installed\n")
+            continue
         proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                               stdin=subprocess.DEVNULL, timeout=280)
         out = proc.stdout.decode("utf-8", "replace")
