@@ -1,0 +1,313 @@
+#pragma once
+// A bounding volume hierarchy (book 5.2): a binary tree of axis-aligned boxes over primitives,
+// so that a ray tests a few boxes and a few primitives instead of every primitive.
+//
+// Generic over the primitive: the builder sees only each primitive's box (and a centroid to sort
+// by), and traversal calls back `test(i, t_max)` for primitive i. So one BVH serves triangles
+// (triangle_bvh.hpp specialises it) and the objects of a scene (scene.hpp's object_ref) alike.
+//
+// * Build: top down, splitting by the surface area heuristic (SAH) evaluated at the borders of
+//   a few bins per axis; leaves hold at most max_leaf_size primitives.
+// * Layout: one flat array in depth-first order. An inner node's first child is the next node,
+//   its second child is at `index`; a leaf's primitives are order[index, index + count).
+// * Traversal: front to back (the child on the side the ray comes from first, by the sign of the
+//   ray's direction on the split axis) with a small fixed stack, no allocation; the any-hit
+//   variant for shadow rays stops at the first primitive that blocks.
+#include <zraka/aabb.hpp>
+#include <zraka/error.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace zraka {
+
+// The traversal stack holds one entry per level; the builder keeps the depth below it.
+constexpr int bvh_max_depth = 64;
+
+struct bvh_build_options {
+  int bins = 16;               // SAH candidate planes per axis: the borders between bins
+  int max_leaf_size = 4;       // a leaf never holds more
+  double traversal_cost = 1.0; // C_trav: one box test relative to one primitive test (C_isect = 1)
+};
+
+template <class T> struct bvh_node_t {
+  aabb_t<T> box;
+  std::uint32_t index = 0;  // inner: the second child's node; leaf: first entry in bvh_t::order
+  std::uint16_t count = 0;  // primitives in a leaf; 0 marks an inner node
+  std::uint8_t axis = 0;    // inner: the split axis, for front-to-back order
+  std::uint8_t unused = 0;
+  bool leaf() const { return count != 0; }
+};
+static_assert(sizeof(bvh_node_t<float>) == 32, "a float node fills half a cache line");
+
+template <class T> struct bvh_t {
+  std::vector<bvh_node_t<T>> nodes;  // depth-first; nodes[0] is the root
+  std::vector<std::uint32_t> order;  // primitive indices, leaf by leaf
+  std::size_t primitive_count = 0;   // as given to the builder (some may be left out: see build)
+  int depth = 0;                     // levels, the root's counted as 1
+  bool empty() const { return nodes.empty(); }
+};
+
+using bvh = bvh_t<double>;
+
+// What a traversal did, summed over calls: for "nodes visited per ray" and the like.
+struct bvh_stats {
+  std::uint64_t nodes = 0;       // box tests
+  std::uint64_t primitives = 0;  // primitive tests
+};
+
+namespace detail {
+
+template <class T> class bvh_builder {
+ public:
+  bvh_builder(const std::vector<aabb_t<T>>& boxes, const std::vector<vec3_t<T>>& centroids,
+              const bvh_build_options& opt, bvh_t<T>& out)
+      : boxes_(boxes), centroids_(centroids), opt_(opt), out_(out), bins_(opt.bins),
+        right_area_(opt.bins), right_count_(opt.bins) {}
+
+  void run() {
+    if (boxes_.size() >= std::size_t(UINT32_MAX)) throw error("bvh: too many primitives");
+    out_.primitive_count = boxes_.size();
+    // A primitive with an empty or non-finite box, or a non-finite centroid, can never be hit:
+    // it is left out, so that NaNs cannot disturb the binning.
+    for (std::size_t i = 0; i < boxes_.size(); ++i)
+      if (!boxes_[i].empty() && is_finite(boxes_[i].lo) && is_finite(boxes_[i].hi) &&
+          is_finite(centroids_[i]))
+        out_.order.push_back(static_cast<std::uint32_t>(i));
+    if (out_.order.empty()) return;
+    out_.nodes.reserve(2 * out_.order.size() / std::max(1, opt_.max_leaf_size) + 1);
+    build(0, static_cast<std::uint32_t>(out_.order.size()), 1);
+  }
+
+ private:
+  struct split {
+    int axis = -1;
+    int bin = 0;  // primitives in bins < bin go left
+    T cost = infinity<T>;
+  };
+  struct bin {
+    aabb_t<T> box;
+    std::uint32_t count = 0;
+  };
+
+  // The bin of centroid c on axis a; the same expression for binning and partitioning, so the
+  // two always agree.
+  static int bin_of(T c, T lo, T scale, int bins) {
+    return std::clamp(static_cast<int>((c - lo) * scale), 0, bins - 1);
+  }
+
+  static int ceil_log2(std::uint32_t n) {
+    int k = 0;
+    while ((std::uint64_t(1) << k) < n) ++k;
+    return k;
+  }
+
+  // [listing sah]
+  // The SAH cost of splitting [first, last) at a bin border, in units of one primitive test:
+  // C_trav + (A_L N_L + A_R N_R) / A, with A the parent's area. A ray that hits the parent hits
+  // a child with probability A_child / A (for uniformly distributed rays), so this is the
+  // expected cost of the split if the children become leaves. Compared times A (no division:
+  // a flat parent has A = 0).
+  split best_sah_split(std::uint32_t first, std::uint32_t last, const aabb_t<T>& cbox) {
+    split best;
+    const int nb = opt_.bins;
+    std::vector<bin>& bins = bins_;
+    std::vector<T>& right_area = right_area_;
+    std::vector<std::uint32_t>& right_count = right_count_;
+    for (int a = 0; a < 3; ++a) {
+      const T extent = cbox.hi[a] - cbox.lo[a];
+      if (!(extent > T(0)) || !std::isfinite(extent)) continue;  // all centroids in one plane
+      const T scale = T(nb) / extent;
+      std::fill(bins.begin(), bins.end(), bin{});
+      for (std::uint32_t k = first; k < last; ++k) {
+        const std::uint32_t i = out_.order[k];
+        bin& b = bins[bin_of(centroids_[i][a], cbox.lo[a], scale, nb)];
+        b.box.grow(boxes_[i]);
+        ++b.count;
+      }
+      aabb_t<T> acc;  // sweep from the right: area and count of bins [j, nb)
+      std::uint32_t n = 0;
+      for (int j = nb - 1; j > 0; --j) {
+        acc.grow(bins[j].box);
+        n += bins[j].count;
+        right_area[j] = acc.surface_area();
+        right_count[j] = n;
+      }
+      acc = {};
+      n = 0;
+      for (int j = 1; j < nb; ++j) {  // the border between bins j-1 and j
+        acc.grow(bins[j - 1].box);
+        n += bins[j - 1].count;
+        if (n == 0 || right_count[j] == 0) continue;
+        const T cost = acc.surface_area() * T(n) + right_area[j] * T(right_count[j]);
+        if (cost < best.cost) best = {a, j, cost};
+      }
+    }
+    return best;
+  }
+  // [end]
+
+  std::uint32_t build(std::uint32_t first, std::uint32_t last, int depth) {
+    const auto me = static_cast<std::uint32_t>(out_.nodes.size());
+    out_.nodes.emplace_back();
+    out_.depth = std::max(out_.depth, depth);
+    aabb_t<T> box, cbox;
+    for (std::uint32_t k = first; k < last; ++k) {
+      box.grow(boxes_[out_.order[k]]);
+      cbox.grow(centroids_[out_.order[k]]);
+    }
+    out_.nodes[me].box = box;
+    const std::uint32_t n = last - first;
+
+    std::uint32_t mid = first;
+    int axis = 0;
+    // Near the depth limit only halving splits are used: then depth + ceil(log2 n) never grows,
+    // so the tree stays within the traversal stack whatever SAH would have liked.
+    const bool must_halve = depth + ceil_log2(n) >= bvh_max_depth - 1;
+    const split s = (n > 1 && !must_halve) ? best_sah_split(first, last, cbox) : split{};
+    const T area = box.surface_area();
+    const T split_cost = T(opt_.traversal_cost) * area + s.cost;  // both times A
+    if (n == 1 || (n <= std::uint32_t(opt_.max_leaf_size) && !must_halve && T(n) * area <= split_cost)) {
+      out_.nodes[me].index = first;
+      out_.nodes[me].count = static_cast<std::uint16_t>(n);
+      return me;
+    }
+    if (s.axis >= 0) {
+      const T scale = T(opt_.bins) / (cbox.hi[s.axis] - cbox.lo[s.axis]);
+      const auto it = std::partition(
+          out_.order.begin() + first, out_.order.begin() + last, [&](std::uint32_t i) {
+            return bin_of(centroids_[i][s.axis], cbox.lo[s.axis], scale, opt_.bins) < s.bin;
+          });
+      mid = static_cast<std::uint32_t>(it - out_.order.begin());
+      axis = s.axis;
+    } else {
+      // No SAH split: all centroids coincide, or the depth limit. Halve by count along the
+      // widest centroid extent (any order if they coincide): the recursion always ends.
+      const vec3_t<T> e = cbox.extent();
+      axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+      mid = first + n / 2;
+      std::nth_element(out_.order.begin() + first, out_.order.begin() + mid,
+                       out_.order.begin() + last, [&](std::uint32_t i, std::uint32_t j) {
+                         return centroids_[i][axis] < centroids_[j][axis];
+                       });
+    }
+    build(first, mid, depth + 1);  // the first child lands right after its parent
+    const std::uint32_t second = build(mid, last, depth + 1);
+    out_.nodes[me].index = second;
+    out_.nodes[me].axis = static_cast<std::uint8_t>(axis);
+    return me;
+  }
+
+  const std::vector<aabb_t<T>>& boxes_;
+  const std::vector<vec3_t<T>>& centroids_;
+  const bvh_build_options& opt_;
+  bvh_t<T>& out_;
+  std::vector<bin> bins_;  // scratch for best_sah_split, allocated once
+  std::vector<T> right_area_;
+  std::vector<std::uint32_t> right_count_;
+};
+
+}  // namespace detail
+
+// Builds a BVH over primitives 0..n-1 with the given boxes and centroids (the points that the
+// SAH bins sort by; usually the boxes' centres).
+template <class T>
+bvh_t<T> build_bvh(const std::vector<aabb_t<T>>& boxes, const std::vector<vec3_t<T>>& centroids,
+                   const bvh_build_options& opt = {}) {
+  if (boxes.size() != centroids.size())
+    throw error("bvh: " + std::to_string(boxes.size()) + " boxes but " +
+                std::to_string(centroids.size()) + " centroids");
+  if (opt.bins < 2 || opt.bins > 256)
+    throw error("bvh: bins must be in 2..256, got " + std::to_string(opt.bins));
+  if (opt.max_leaf_size < 1 || opt.max_leaf_size > 255)
+    throw error("bvh: max_leaf_size must be in 1..255, got " + std::to_string(opt.max_leaf_size));
+  if (!(opt.traversal_cost >= 0) || !std::isfinite(opt.traversal_cost))
+    throw error("bvh: traversal_cost must be finite and >= 0");
+  bvh_t<T> out;
+  detail::bvh_builder<T>(boxes, centroids, opt, out).run();
+  return out;
+}
+
+template <class T>
+bvh_t<T> build_bvh(const std::vector<aabb_t<T>>& boxes, const bvh_build_options& opt = {}) {
+  std::vector<vec3_t<T>> centroids;
+  centroids.reserve(boxes.size());
+  for (const auto& b : boxes) centroids.push_back(b.center());
+  return build_bvh(boxes, centroids, opt);
+}
+
+// [listing traverse]
+// The nearest hit along r in (t_min, t_max). test(i, t_max) intersects primitive i on
+// (t_min, t_max); on a hit it records what the caller wants, shrinks t_max to the hit's t and
+// returns true. Boxes beyond the nearest hit so far are skipped, and nearer boxes come first,
+// so t_max shrinks early.
+template <class T, class Test>
+bool bvh_intersect(const bvh_t<T>& bvh, const ray_t<T>& r, T t_min, T t_max, Test&& test,
+                   bvh_stats* stats = nullptr) {
+  if (bvh.empty() || !r.valid()) return false;
+  const box_ray_t<T> br(r);
+  std::array<std::uint32_t, bvh_max_depth> stack;
+  int top = 0;
+  std::uint32_t i = 0;  // the root
+  bool found = false;
+  for (;;) {
+    const bvh_node_t<T>& node = bvh.nodes[i];
+    if (stats) ++stats->nodes;
+    if (intersect(node.box, br, t_min, t_max)) {
+      if (node.leaf()) {
+        for (std::uint32_t k = node.index; k < node.index + node.count; ++k) {
+          if (stats) ++stats->primitives;
+          if (test(bvh.order[k], t_max)) found = true;
+        }
+      } else if (r.direction[node.axis] < T(0)) {  // the second child is nearer
+        stack[top++] = i + 1;
+        i = node.index;
+        continue;
+      } else {
+        stack[top++] = node.index;
+        i = i + 1;
+        continue;
+      }
+    }
+    if (top == 0) break;
+    i = stack[--top];
+  }
+  return found;
+}
+// [end]
+
+// Any hit in (t_min, t_max), for shadow rays: test(i) returns true when primitive i blocks the
+// segment, and the traversal stops right there (no ordering needed, no t to shrink).
+template <class T, class Test>
+bool bvh_occluded(const bvh_t<T>& bvh, const ray_t<T>& r, T t_min, T t_max, Test&& test,
+                  bvh_stats* stats = nullptr) {
+  if (bvh.empty() || !r.valid()) return false;
+  const box_ray_t<T> br(r);
+  std::array<std::uint32_t, bvh_max_depth> stack;
+  int top = 0;
+  std::uint32_t i = 0;
+  for (;;) {
+    const bvh_node_t<T>& node = bvh.nodes[i];
+    if (stats) ++stats->nodes;
+    if (intersect(node.box, br, t_min, t_max)) {
+      if (node.leaf()) {
+        for (std::uint32_t k = node.index; k < node.index + node.count; ++k) {
+          if (stats) ++stats->primitives;
+          if (test(bvh.order[k])) return true;
+        }
+      } else {
+        stack[top++] = node.index;
+        i = i + 1;
+        continue;
+      }
+    }
+    if (top == 0) break;
+    i = stack[--top];
+  }
+  return false;
+}
+
+}  // namespace zraka

@@ -1,0 +1,285 @@
+// The triangle BVH (triangle_bvh.hpp): its memory (4-wide nodes of 128 bytes, 32 per child;
+// 40-byte triangles; at most 80 bytes per triangle on the teapot), and hits identical to brute force (same t, same triangle,
+// same barycentrics, bit for bit) for nearest and any hit, against two references: its own brute
+// force loop and triangle.hpp's intersect_moller_trumbore() over the input in index order. On
+// random soups, the teapot at several divs, axis-aligned rays, rays from inside, no triangles,
+// one triangle, identical centroids, degenerate triangles and NaN rays.
+#include <zraka/bpt.hpp>
+#include <zraka/resources.hpp>
+#include <zraka/rng.hpp>
+#include <zraka/tessellate.hpp>
+#include <zraka/triangle_bvh.hpp>
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace zraka;
+
+namespace {
+
+using tri_f = triangle_t<float>;
+
+vec3f random_unit(rng& g) {
+  const double z = 2 * g.uniform() - 1, phi = 2 * pi<double> * g.uniform();
+  const double s = std::sqrt(std::max(0.0, 1 - z * z));
+  return vec3f(vec3(s * std::cos(phi), s * std::sin(phi), z));
+}
+vec3f random_in(rng& g, const aabb_t<float>& b) {
+  return b.lo + vec3f(vec3(g.uniform(), g.uniform(), g.uniform())) * (b.hi - b.lo);
+}
+
+// The independent reference: triangle.hpp's Moller-Trumbore over every input triangle in index
+// order; strict t < t_max, so among exact ties the lowest index stays.
+triangle_bvh_hit reference(const std::vector<tri_f>& tris, const rayf& r, float t_max) {
+  triangle_bvh_hit best;
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    hit_t<float> h;
+    if (intersect_moller_trumbore(tris[i], r, 0.0f, t_max, h)) {
+      t_max = h.t;
+      best = {h.t, h.uv.x, h.uv.y, std::uint32_t(i)};
+    }
+  }
+  return best;
+}
+
+bool same(const triangle_bvh_hit& a, const triangle_bvh_hit& b) {
+  return a.triangle == b.triangle && a.t == b.t && a.u == b.u && a.v == b.v;
+}
+
+// Returns the number of rays that hit.
+int compare(const triangle_bvh& bvh, const std::vector<tri_f>& tris, const std::vector<rayf>& rays) {
+  int hits = 0, bad_nearest = 0, bad_brute = 0, bad_any = 0;
+  for (const rayf& r : rays) {
+    const triangle_bvh_hit want = reference(tris, r, infinity<float>);
+    triangle_bvh_hit got, brute;
+    const bool found = bvh.intersect(r, 0.0f, infinity<float>, got);
+    const bool brute_found = bvh.intersect_brute_force(r, 0.0f, infinity<float>, brute);
+    hits += found;
+    if (found != (want.triangle != UINT32_MAX) || !same(got, want)) ++bad_nearest;
+    if (brute_found != found || !same(brute, got)) ++bad_brute;
+    for (const float s : {0.5f, 2.0f, infinity<float>}) {
+      const float t_max = found ? want.t * s : s;
+      const bool blocked = reference(tris, r, t_max).triangle != UINT32_MAX;
+      if (bvh.occluded(r, 0.0f, t_max) != blocked) ++bad_any;
+    }
+  }
+  CHECK(bad_nearest == 0);
+  CHECK(bad_brute == 0);
+  CHECK(bad_any == 0);
+  return hits;
+}
+
+std::vector<rayf> mixed_rays(rng& g, const aabb_t<float>& box, int n) {
+  std::vector<rayf> rays;
+  const vec3f c = box.center();
+  const float radius = glm::length(box.extent());
+  for (int i = 0; i < n; ++i) {
+    if (i % 2 == 0) {
+      const vec3f o = c + radius * random_unit(g);
+      rays.emplace_back(o, random_in(g, box) - o);  // from outside, towards the box
+    } else {
+      rays.emplace_back(random_in(g, box), random_unit(g));  // from inside
+    }
+  }
+  return rays;
+}
+
+std::vector<tri_f> float_triangles(const mesh& m) {
+  std::vector<tri_f> tris;
+  for (std::size_t i = 0; i < m.triangle_count(); ++i) {
+    const triangle t = m.triangle(i);
+    tris.push_back({vec3f(t.a), vec3f(t.b), vec3f(t.c)});
+  }
+  return tris;
+}
+
+}  // namespace
+
+TEST_CASE("layout: 128-byte 4-wide nodes, 40-byte triangles, at most 80 bytes per teapot triangle") {
+  static_assert(sizeof(triangle_bvh_node4) == 128 && alignof(triangle_bvh_node4) == 64);
+  static_assert(sizeof(packed_triangle) == 40);
+  const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
+  for (const int divs : {4, 16}) {
+    const mesh m = tessellate(patches, divs);
+    const triangle_bvh bvh(m);
+    MESSAGE("teapot divs " << divs << ": " << m.triangle_count() << " triangles, "
+                           << bvh.nodes().size() << " 4-wide nodes, " << bvh.bytes_per_triangle()
+                           << " bytes per triangle, depth " << bvh.depth());
+    CHECK(bvh.input_count() == m.triangle_count());
+    CHECK(bvh.bytes_per_triangle() <= 80.0);
+    CHECK(bvh.depth() < bvh_max_depth);
+    // The teapot's collapsed rows give zero-area triangles: left out, since never hit.
+    CHECK(bvh.triangles().size() < m.triangle_count());
+    CHECK(bvh.triangles().size() > m.triangle_count() * 9 / 10);
+  }
+}
+
+TEST_CASE("the teapot at several divs: identical to brute force") {
+  const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
+  rng g(21);
+  for (const int divs : {1, 2, 5, 12}) {
+    CAPTURE(divs);
+    const mesh m = tessellate(patches, divs);
+    const auto tris = float_triangles(m);
+    const triangle_bvh bvh(m);
+    const aabb_t<float> box{vec3f(m.bounds().lo), vec3f(m.bounds().hi)};
+    const int hits = compare(bvh, tris, mixed_rays(g, box, 300));
+    CHECK(hits > 100);
+  }
+}
+
+TEST_CASE("random soups, small and large triangles: identical to brute force") {
+  rng g(8);
+  const aabb_t<float> world{vec3f(-10), vec3f(10)};
+  for (const int n : {1, 2, 9, 300, 3000}) {
+    for (const float size : {0.5f, 5.0f}) {
+      CAPTURE(n);
+      CAPTURE(size);
+      std::vector<tri_f> tris;
+      for (int i = 0; i < n; ++i) {
+        const vec3f c = random_in(g, world);
+        tris.push_back({c + size * random_unit(g), c + size * random_unit(g), c + size * random_unit(g)});
+      }
+      const int hits = compare(triangle_bvh(tris), tris, mixed_rays(g, world, 400));
+      if (n >= 300) CHECK(hits > 10);
+    }
+  }
+}
+
+TEST_CASE("rays along the axes from origins in the planes of box faces") {
+  // Integer coordinates: origins lie exactly in box faces, directions have zero components,
+  // so the slab test meets 0 * inf = NaN and must keep the box closed.
+  rng g(4);
+  auto grid = [&] { return float(std::floor(g.uniform() * 9)); };
+  std::vector<tri_f> tris;
+  for (int i = 0; i < 500; ++i) {
+    const vec3f a(grid(), grid(), grid());
+    tris.push_back({a, a + vec3f(grid() - 4, grid() - 4, grid() - 4),
+                    a + vec3f(grid() - 4, grid() - 4, grid() - 4)});
+  }
+  const triangle_bvh bvh(tris);
+  std::vector<rayf> rays;
+  for (int i = 0; i < 900; ++i) {
+    vec3f d(0);
+    d[i % 3] = (i / 3) % 2 ? 1.0f : -1.0f;
+    rays.emplace_back(vec3f(grid(), grid(), grid()) + 0.5f * vec3f(float(i % 2), 0, i % 5 == 0), d);
+  }
+  // Negative zeros: 1 / -0 = -inf, so the near side of that slab is hi (bvh_ray's sign bit);
+  // taking the sign by d < 0 instead would make those slabs empty.
+  for (int i = 0; i < 300; ++i) {
+    vec3f d(-0.0f, -0.0f, -0.0f);
+    d[i % 3] = i % 2 ? 1.0f : -1.0f;
+    rays.emplace_back(vec3f(grid(), grid(), grid()), d);
+    REQUIRE(std::signbit(rays.back().direction[(i + 1) % 3]));
+  }
+  CHECK(compare(bvh, tris, rays) > 50);
+}
+
+TEST_CASE("no triangles, one triangle, identical centroids, degenerate triangles") {
+  const triangle_bvh none(std::vector<tri_f>{});
+  triangle_bvh_hit h;
+  CHECK(none.bytes() == 0);
+  CHECK_FALSE(none.intersect(rayf({0, 0, 0}, {1, 0, 0}), 0.0f, infinity<float>, h));
+  CHECK_FALSE(none.occluded(rayf({0, 0, 0}, {1, 0, 0}), 0.0f, infinity<float>));
+
+  const triangle_bvh one(std::vector<tri_f>{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}});
+  REQUIRE(one.intersect(rayf({0.25f, 0.5f, 2}, {0, 0, -1}), 0.0f, infinity<float>, h));
+  CHECK(h.t == 2.0f);  // exact: short dyadic fractions
+  CHECK(h.u == 0.25f);
+  CHECK(h.v == 0.5f);
+  CHECK(h.triangle == 0);
+  CHECK_FALSE(one.intersect(rayf({0.25f, 0.5f, 2}, {0, 0, -1}), 0.0f, 2.0f, h));  // open interval
+  CHECK_FALSE(one.occluded(rayf({0.25f, 0.5f, 2}, {0, 0, -1}), 0.0f, 2.0f));
+  CHECK(one.occluded(rayf({0.25f, 0.5f, 2}, {0, 0, -1}), 0.0f, 2.5f));
+
+  // 2000 copies of one triangle: the builder halves by count; every copy ties, index 0 wins.
+  const std::vector<tri_f> copies(2000, tri_f{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  const triangle_bvh same(copies);
+  CHECK(same.depth() <= 1 + 9);
+  REQUIRE(same.intersect(rayf({0.2f, 0.2f, 1}, {0, 0, -1}), 0.0f, infinity<float>, h));
+  CHECK(h.triangle == 0);
+
+  // Degenerate triangles (a point, a segment) and a NaN vertex are never hit, as in triangle.hpp.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<tri_f> bad{{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}},
+                               {{0, 0, 0}, {1, 1, 0}, {2, 2, 0}},
+                               {{0, 0, 0}, {nan, 0, 0}, {0, 1, 0}},
+                               {{0, 0, -1}, {1, 0, -1}, {0, 1, -1}}};
+  const triangle_bvh with_bad(bad);
+  CHECK(with_bad.triangles().size() == 1);
+  REQUIRE(with_bad.intersect(rayf({0.1f, 0.1f, 1}, {0, 0, -1}), 0.0f, infinity<float>, h));
+  CHECK(h.triangle == 3);
+}
+
+TEST_CASE("NaN rays hit nothing and visit nothing") {
+  rng g(2);
+  std::vector<tri_f> tris;
+  for (int i = 0; i < 100; ++i)
+    tris.push_back({random_in(g, {vec3f(-1), vec3f(1)}), random_in(g, {vec3f(-1), vec3f(1)}),
+                    random_in(g, {vec3f(-1), vec3f(1)})});
+  const triangle_bvh bvh(tris);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (const rayf& r : {rayf({nan, 0, 0}, {1, 0, 0}), rayf({0, 0, 0}, {nan, 0, 1}),
+                        rayf({0, 0, 0}, {0, 0, 0})}) {
+    bvh_stats st;
+    triangle_bvh_hit h;
+    CHECK_FALSE(bvh.intersect(r, 0.0f, infinity<float>, h, &st));
+    CHECK_FALSE(bvh.occluded(r, 0.0f, infinity<float>, &st));
+    CHECK_FALSE(bvh.intersect_brute_force(r, 0.0f, infinity<float>, h));
+    CHECK(st.nodes == 0);
+  }
+}
+
+TEST_CASE("statistics count box and triangle tests; any hit stops early") {
+  const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
+  const mesh m = tessellate(patches, 8);
+  const triangle_bvh bvh(m);
+  const rayf r({0, 1.5f, 20}, {0, 0, -1});  // straight at the teapot's body
+  bvh_stats nearest, any;
+  triangle_bvh_hit h;
+  REQUIRE(bvh.intersect(r, 0.0f, infinity<float>, h, &nearest));
+  REQUIRE(bvh.occluded(r, 0.0f, infinity<float>, &any));
+  CHECK(nearest.nodes >= std::uint64_t(bvh.depth()) / 2);
+  CHECK(nearest.primitives < 200);  // of 4096: the point of a BVH
+  CHECK(any.nodes <= nearest.nodes);
+}
+
+TEST_CASE("errata C10: log-like on the teapot, linear on slivers through one point") {
+  // Counts of box and triangle tests, not times: deterministic.
+  auto tests_per_ray = [](const triangle_bvh& bvh, const std::vector<rayf>& rays) {
+    bvh_stats st;
+    triangle_bvh_hit h;
+    for (const rayf& r : rays) bvh.intersect(r, 0.0f, infinity<float>, h, &st);
+    return double(st.nodes + st.primitives) / double(rays.size());
+  };
+  const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
+  rng g(6);
+  const mesh small = tessellate(patches, 4), large = tessellate(patches, 16);  // 1k and 16k
+  const aabb_t<float> box{vec3f(small.bounds().lo), vec3f(small.bounds().hi)};
+  const auto rays = mixed_rays(g, box, 2000);
+  const double a = tests_per_ray(triangle_bvh(small), rays), b = tests_per_ray(triangle_bvh(large), rays);
+  MESSAGE("teapot: " << a << " tests per ray at 1k triangles, " << b << " at 16k");
+  CHECK(b < 2 * a);  // 16 times the triangles, far less than twice the work
+
+  // n slivers through the origin in random directions: every box overlaps every other.
+  auto slivers = [&](int n) {
+    std::vector<tri_f> tris;
+    for (int i = 0; i < n; ++i) {
+      const vec3f u = random_unit(g);
+      tris.push_back({u, -u, 0.01f * random_unit(g)});
+    }
+    return triangle_bvh(tris);
+  };
+  std::vector<rayf> through_middle;
+  for (int i = 0; i < 500; ++i) {
+    const vec3f o(4 * float(g.uniform()) - 2, 4 * float(g.uniform()) - 2, 3);
+    through_middle.emplace_back(o, 0.1f * vec3f(float(g.uniform()), float(g.uniform()), 0) - o);
+  }
+  const double s1 = tests_per_ray(slivers(256), through_middle);
+  const double s4 = tests_per_ray(slivers(1024), through_middle);
+  MESSAGE("slivers: " << s1 << " tests per ray at n = 256, " << s4 << " at 1024");
+  CHECK(s4 > 3 * s1);  // four times n, about four times the work: O(n)
+  CHECK(s4 > 1024);    // more tests than brute force's n
+}
