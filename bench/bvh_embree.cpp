@@ -14,7 +14,7 @@
 
 #include "teapot_rays.hpp"
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
   app.add_option("--leaf", opt.max_leaf_size, "our BVH: most triangles per leaf");
   app.add_option("--traversal-cost", opt.traversal_cost, "our BVH: SAH cost of a box test (a triangle test = 1)");
   app.add_option("--bins", opt.bins, "our BVH: SAH bins per axis");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return guarded([&] {
     if (repeat < 1) throw error("--repeat must be at least 1");

@@ -9,7 +9,7 @@
 #include <zraka/stopwatch.hpp>
 #include <zraka/vec.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <cstdio>
 #include <string>
@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   app.add_option("--b", b_in, "vector b (3 numbers)")->expected(3);
   app.add_option("--normal", n_in, "a normal to build an orthonormal basis around")->expected(3);
   app.add_option("--seed", seed, "seed for the random linearity test");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return guarded([&] {
     const stopwatch clock;

@@ -7,7 +7,7 @@
 #include <zraka/sphere.hpp>
 #include <zraka/stopwatch.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <cstdio>
 #include <limits>
@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
   app.add_option("--origin", o_in, "ray origin O (3 numbers)")->expected(3);
   app.add_option("--direction", d_in, "ray direction (3 numbers; any length, even 0)")->expected(3);
   app.add_option("--t", ts, "parameters t at which to print R(t)")->expected(1, 64);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return guarded([&] {
     const stopwatch clock;

@@ -9,7 +9,7 @@
 #include <zraka/sphere.hpp>
 #include <zraka/stopwatch.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <cstdio>
 
@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   app.add_option("--height", height, "image height in pixels");
   app.add_option("--radius", radius, "sphere radius (the camera is 4 units away)");
   app.add_option("--out", out, "output name without extension");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return zraka::guarded([&] {
     using namespace zraka;

@@ -11,7 +11,7 @@
 #include <zraka/stopwatch.hpp>
 #include <zraka/tessellate.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <cstdio>
 #include <sstream>
@@ -141,13 +141,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "the curve figure (.png, .ppm or .pfm)");
   app.add_option("--obj", obj, "the sampled patch, as a Wavefront OBJ mesh");
   app.add_option("--grid", grid, "patch samples per side (grid x grid cells)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {  // --help exits 0; a bad argument is "error: ...", 1
-    if (e.get_exit_code() == 0) return app.exit(e);
-    std::fprintf(stderr, "error: %s (see --help)\n", e.what());
-    return 1;
-  }
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return guarded([&] {
     stopwatch total;

@@ -13,7 +13,7 @@
 #include <zraka/stopwatch.hpp>
 #include <zraka/tessellate.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -45,13 +45,7 @@ int main(int argc, char** argv) {
   app.add_option("--height", height, "image height in pixels");
   app.add_option("--aa", aa, "aa x aa rays in pixels at edges, on a regular grid (anti-aliasing)");
   app.add_option("--out", out, "output image (.png, .ppm or .pfm)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {  // --help exits 0; a bad argument is "error: ...", 1
-    if (e.get_exit_code() == 0) return app.exit(e);
-    std::fprintf(stderr, "error: %s (see --help)\n", e.what());
-    return 1;
-  }
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return guarded([&] {
     stopwatch total;

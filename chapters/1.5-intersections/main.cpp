@@ -12,7 +12,7 @@
 #include <zraka/stopwatch.hpp>
 #include <zraka/triangle.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <array>
 #include <cstdio>
@@ -224,7 +224,7 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "seed for the random rays of the comparison");
   app.add_option("--rays", rays, "random rays per method in the comparison");
   app.add_flag("--mask", mask, "black-on-white silhouettes of the objects (thesis 2.1), no floor");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return guarded([&] {
     const std::map<std::string, triangle_method> by_name = {

@@ -16,7 +16,7 @@
 #include <zraka/stopwatch.hpp>
 #include <zraka/vec.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -168,13 +168,7 @@ int main(int argc, char** argv) {
                  "largest run has N = 2^this samples (default 20, about 1 s in all; at most 28)");
   app.add_option("--csv-dir", s.csv_dir, "folder for the CSV files (default: current folder)");
   app.add_option("--hist-samples", s.hist_samples, "samples for the histogram of r = 2 sqrt(xi)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    std::fprintf(stderr, "error: %s (see --help)\n", e.what());  // CLI11 would exit with 1xx
-    return 1;
-  }
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return zraka::guarded([&] {
     using namespace zraka;

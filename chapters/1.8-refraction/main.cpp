@@ -11,7 +11,7 @@
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/render.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <cstdio>
 
@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "random seed");
   app.add_option("--threads", opt.threads, "threads (0 = all cores)");
   app.add_option("--out", out, "output name without extension");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return guarded([&] {
     if (!(ior >= 1 && ior <= 4)) throw error("--ior must be between 1 and 4, got " + std::to_string(ior));

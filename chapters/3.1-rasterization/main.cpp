@@ -13,7 +13,7 @@
 #include <zraka/stopwatch.hpp>
 #include <zraka/triangle.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
   app.add_option("--triangles", count, "number of random triangles (besides a split square)");
   app.add_option("--seed", seed, "random seed for the triangles");
   app.add_option("--out", out, "output prefix: <out>-raster.png, <out>-raycast.png, <out>-diff.png");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return zraka::guarded([&] {
     using namespace zraka;

@@ -11,7 +11,7 @@
 #include <zraka/image_io.hpp>
 #include <zraka/stopwatch.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <array>
 #include <cmath>
@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   app.add_flag("--thesis-stride", thesis_stride, "use the thesis's stride of 3 floats (wrong: B12)");
   app.add_flag("--points", points, "draw the vertices as points that a geometry shader turns "
                                    "into short lines (kernels/points.geom)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return zraka::guarded([&] {
     using namespace zraka;

@@ -17,7 +17,7 @@
 #define ZRAKA_HAVE_CPU_TESSELLATION 1
 #endif
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   app.add_option("--angle", angle, "turn the teapot about the vertical axis, degrees");
   app.add_flag("--wireframe", wireframe, "draw the triangles' edges only");
   app.add_option("--patches", patch_file, "Bezier patch file (.bpt)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return zraka::guarded([&] {
     using namespace zraka;

@@ -7,7 +7,7 @@
 #include <zraka/error.hpp>
 #include <zraka/stopwatch.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <cstdio>
 #include <optional>
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
   app.add_option("-n,--n", n_arg, "number of elements");
   app.add_option("--kernel", kernel_file, "kernel file (relative to the resource root or the "
                                           "working directory); must define vector_add");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return zraka::guarded([&] {
     using namespace zraka;

@@ -17,7 +17,7 @@
 
 #include "teapot_rays.hpp"
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <algorithm>
 #include <ctime>
@@ -152,7 +152,7 @@ int main(int argc, char** argv) {
   app.add_option("--traversal-cost", s.build.traversal_cost, "SAH cost of a box test (a triangle test = 1)");
   app.add_option("--seed", s.seed, "seed of the random rays");
   app.add_option("--out", s.out, "output name: writes <out>-heat.png");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return guarded([&] {
     stopwatch total;
