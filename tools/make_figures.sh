@@ -61,3 +61,15 @@ fi
 "$bin/bvh" --divs 32 --out 5.2-bvh >/dev/null && cp 5.2-bvh-heat.png "$fig/"
 # --- assignments (book/assignments): the target images, made by the reference solutions
 "$bin/assignment-01-cylinder-render" --out "${bin%/build/bin}/book/assignments/01-cylinder/target.png" >/dev/null
+"$bin/assignment-02-ggx-render" --out "${bin%/build/bin}/book/assignments/02-ggx/target.png" >/dev/null
+# --- 2.1, 2.2, 4.1
+"$bin/shaders" --out 2.1-shaders.png >/dev/null && cp 2.1-shaders.png "$fig/"
+"$bin/shaders" --shader normal --out 2.1-normal.png >/dev/null && cp 2.1-normal.png "$fig/"
+"$bin/whitted" --out 2.2-default.png >/dev/null && cp 2.2-default.png "$fig/"
+"$bin/whitted" scenes/box.yaml --spp 16 --out 2.2-box.png >/dev/null && cp 2.2-box.png "$fig/"
+for g in reflect both refract; do
+  "$bin/whitted" scenes/glass-$g.yaml --width 240 --height 180 --spp 16 --out 2.2-glass-$g.png >/dev/null
+  cp 2.2-glass-$g.png "$fig/"
+done
+"$bin/whitted" scenes/teapot.yaml --spp 16 --out 2.2-teapot.png >/dev/null && cp 2.2-teapot.png "$fig/"
+"$bin/whitted" scenes/box.yaml --spp 16 --depth 1 --out 2.2-box-depth1.png >/dev/null && cp 2.2-box-depth1.png "$fig/"

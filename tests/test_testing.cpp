@@ -1,0 +1,228 @@
+// Tests for testing.hpp: every check accepts a correct case and rejects a broken one (a wrong
+// pdf, a biased mean, a shifted image, a wrong derivative or normal, a shape that re-hits
+// itself), and its message names the measured numbers.
+#include <zraka/testing.hpp>
+#include <zraka/sampling.hpp>
+#include <zraka/sphere.hpp>
+
+#include <doctest/doctest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+using namespace zraka;
+namespace zt = zraka::testing;
+
+TEST_CASE("testing: chi-square accepts a sampler with its own pdf and rejects a wrong pdf") {
+  rng g(1);
+  auto sample = [&] { return sample_cosine_hemisphere(g.uniform2()); };
+  const auto good = zt::directions_follow_pdf(
+      sample, [](const vec3& w) { return cosine_hemisphere_pdf(w); }, 50000,
+      direction_grid(10, 20));
+  CHECK_MESSAGE(good.ok, good.message);
+  CHECK(good.message.find("p = ") != std::string::npos);
+  const auto wrong = zt::directions_follow_pdf(
+      sample, [](const vec3& w) { return uniform_hemisphere_pdf(w); }, 50000,
+      direction_grid(10, 20));
+  CHECK_FALSE_MESSAGE(wrong.ok, wrong.message);
+  // A sample where the pdf is zero (below the horizon) is named in the message.
+  const auto below = zt::directions_follow_pdf([&] { return -sample(); },
+      [](const vec3& w) { return cosine_hemisphere_pdf(w); }, 1000, direction_grid(10, 20));
+  CHECK_FALSE(below.ok);
+  CHECK(below.message.find("where the pdf is zero") != std::string::npos);
+}
+
+TEST_CASE("testing: a 2D sampler against its density") {
+  rng g(2);
+  const grid2 grid{8, 1, 0, 2, 0, 1};
+  auto sample = [&] { return std::optional<vec2>(vec2(sample_linear(g.uniform()), 0.5)); };
+  const auto good = zt::samples_follow_density(sample, [](double x, double) { return linear_pdf(x); },
+                                               20000, grid);
+  CHECK_MESSAGE(good.ok, good.message);
+  const auto wrong = zt::samples_follow_density(sample, [](double, double) { return 0.5; }, 20000, grid);
+  CHECK_FALSE_MESSAGE(wrong.ok, wrong.message);
+}
+
+TEST_CASE("testing: the integral of a pdf over the sphere") {
+  // Midpoint rule on 100 x 4 bins of 8 x 8 points: the cosine lobe is linear in cos theta, so
+  // the rule is exact up to rounding (1e-12).
+  CHECK(zt::pdf_integral_over_directions([](const vec3& w) { return cosine_hemisphere_pdf(w); },
+                                         100, 4) == doctest::Approx(1).epsilon(1e-12));
+  CHECK(zt::pdf_integral_over_directions([](const vec3&) { return uniform_sphere_pdf<double>(); },
+                                         10, 4) == doctest::Approx(1).epsilon(1e-12));
+  // A pdf of the wrong constant integrates to that factor.
+  CHECK(zt::pdf_integral_over_directions([](const vec3&) { return 1.0 / (2 * pi<double>); }, 10,
+                                         4) == doctest::Approx(2).epsilon(1e-12));
+}
+
+TEST_CASE("testing: mean within k standard errors") {
+  rng g(3);
+  const auto good = zt::mean_within([&] { return g.uniform(); }, 100000, 0.5);
+  CHECK_MESSAGE(good.ok, good.message);
+  // A bias of 0.01 is 11 standard errors (sigma = 0.289, n = 1e5, se = 9.1e-4).
+  const auto biased = zt::mean_within([&] { return g.uniform() + 0.01; }, 100000, 0.5);
+  CHECK_FALSE_MESSAGE(biased.ok, biased.message);
+  CHECK(biased.message.find("standard errors") != std::string::npos);
+  // Zero variance: exact to a few roundings, else rejected.
+  CHECK(zt::mean_within([] { return 0.25; }, 10, 0.25).ok);
+  CHECK_FALSE(zt::mean_within([] { return 0.25; }, 10, 0.2500001).ok);
+  // NaN samples, or too few, never pass.
+  CHECK_FALSE(zt::mean_within([] { return std::nan(""); }, 10, 0.0).ok);
+  CHECK_FALSE(zt::mean_within([] { return 1.0; }, 1, 1.0).ok);
+}
+
+namespace {
+image gradient(int w, int h, int shift = 0) {
+  image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      img.at(x, y) = rgb(float((x + shift) % w) / float(w), float(y) / float(h), 0.25f);
+  return img;
+}
+}  // namespace
+
+TEST_CASE("testing: image comparison") {
+  const image ref = gradient(32, 16);
+  const zt::image_tolerance tol;  // RMSE 0.01, channel mean 0.005, no max limit
+  CHECK(zt::images_match(ref, ref, tol).ok);
+  // Shifted by 3 pixels: the means stay (a permutation of columns) but RMSE is large.
+  const auto shifted = zt::images_match(gradient(32, 16, 3), ref, tol);
+  CHECK_FALSE_MESSAGE(shifted.ok, shifted.message);
+  // Brighter by 0.01 everywhere: RMSE 0.0082 passes, the channel mean shift 0.01 does not.
+  image brighter = ref;
+  for (rgb& p : brighter.pixels) p += rgb(0.01f);
+  const auto bright = zt::images_match(brighter, ref, tol);
+  CHECK_FALSE_MESSAGE(bright.ok, bright.message);
+  // One hot pixel: only max_abs catches it.
+  // One hot pixel: only max_abs catches it (on 64 x 32 pixels, +0.3 in one pixel is an RMSE
+  // of 0.3 / sqrt(2048) = 0.0066).
+  const image big = gradient(64, 32);
+  image hot = big;
+  hot.at(5, 5) += rgb(0.3f);
+  CHECK(zt::images_match(hot, big, tol).ok);
+  CHECK_FALSE(zt::images_match(hot, big, {0.01, 0.005, 0.1}).ok);
+  // Size and NaN.
+  CHECK_FALSE(zt::images_match(gradient(16, 16), ref, tol).ok);
+  image nan_img = ref;
+  nan_img.at(0, 0).x = std::nanf("");
+  CHECK_FALSE(zt::images_match(nan_img, ref, tol).ok);
+}
+
+TEST_CASE("testing: image comparison against PFM and PNG files") {
+  const image ref = gradient(24, 12);
+  const std::filesystem::path pfm = "test_testing_ref.pfm", png = "test_testing_ref.png";
+  write_pfm(ref, pfm);
+  write_png(ref, png);
+  const zt::image_tolerance exact{1e-7, 1e-7, 1e-7};  // the same image round-trips exactly
+  const auto a = zt::image_matches_file(ref, pfm, exact);
+  CHECK_MESSAGE(a.ok, a.message);
+  const auto b = zt::image_matches_file(ref, png, exact);  // compared as 8-bit display values
+  CHECK_MESSAGE(b.ok, b.message);
+  CHECK_FALSE(zt::image_matches_file(gradient(24, 12, 2), png, {}).ok);
+  const auto missing = zt::image_matches_file(ref, "no_such_file.png", {});
+  CHECK_FALSE(missing.ok);
+  CHECK(missing.message.find("no_such_file") != std::string::npos);
+  std::filesystem::remove(pfm);
+  std::filesystem::remove(png);
+}
+
+TEST_CASE_TEMPLATE("testing: derivatives by central differences", T, float, double) {
+  // Tolerance: the central difference's error is about cbrt(eps)^2 relative, 4e-11 in double
+  // and 1.5e-5 in float, but in float at x = 1000 sin's argument is only known to eps |x|,
+  // which measures 6e-4; 1e-3 still rejects a 1% error.
+  const double tol = 1e-3;
+  const std::vector<T> xs = {T(-3), T(-0.5), T(0), T(0.7), T(2), T(1000), T(-12345.5)};
+  auto f = [](T x) { return std::sin(x) + x * x / T(2); };
+  auto df = [](T x) { return std::cos(x) + x; };
+  const auto good = zt::derivative_matches(f, df, xs, tol);
+  CHECK_MESSAGE(good.ok, good.message);
+  const auto wrong = zt::derivative_matches(f, [&](T x) { return df(x) * T(1.01); }, xs, tol);
+  CHECK_FALSE_MESSAGE(wrong.ok, wrong.message);
+  // A curve in space (a helix) and its tangent, at parameters of order one: the step is
+  // relative to max(1, |x|), too coarse for a function that turns within |x| cbrt(eps).
+  const std::vector<T> ss = {T(-3), T(-0.5), T(0), T(0.7), T(2)};
+  auto curve = [](T s) { return vec3_t<T>(std::cos(s), std::sin(s), s / T(3)); };
+  auto tangent = [](T s) { return vec3_t<T>(-std::sin(s), std::cos(s), T(1) / T(3)); };
+  CHECK(zt::derivative_matches(curve, tangent, ss, tol).ok);
+  CHECK_FALSE(zt::derivative_matches(curve, [&](T s) { return -tangent(s); }, ss, tol).ok);
+  // A NaN derivative is never accepted.
+  CHECK_FALSE(zt::derivative_matches(f, [](T) { return std::numeric_limits<T>::quiet_NaN(); }, xs, tol).ok);
+}
+
+namespace {
+// Rays from a random point on a shell around the sphere towards a random point of the sphere.
+template <class T> auto aim_at_sphere(const sphere_t<T>& s) {
+  return [s](rng& g) {
+    const vec3 from = vec3(s.center) + double(s.radius) * 3.0 * sample_uniform_sphere(g.uniform2());
+    const vec3 to = vec3(s.center) + 0.9 * double(s.radius) * sample_uniform_sphere(g.uniform2());
+    return ray_t<T>(vec3_t<T>(from), vec3_t<T>(to - from));
+  };
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("testing: surface normals by finite differences", T, float, double) {
+  for (const T scale : {T(1e-3), T(1), T(1e3)}) {
+    const sphere_t<T> s{vec3_t<T>(T(2) * scale, T(-1) * scale, T(0.5) * scale), scale};
+    auto isect = [&](const ray_t<T>& r, T t0, T t1, hit_t<T>& h) { return intersect(s, r, t0, t1, h); };
+    // Tolerance 1 degree: the four neighbours are cbrt(eps) radii apart, so curvature tilts the
+    // finite-difference normal by about cbrt(eps)^2 radians, and rounding by eps/cbrt(eps).
+    const auto good = zt::normal_matches_surface(isect, aim_at_sphere(s), 200, scale, 1.0);
+    CHECK_MESSAGE(good.ok, good.message);
+    // A wrong normal: measured from a point beside the centre.
+    auto wrong = [&](const ray_t<T>& r, T t0, T t1, hit_t<T>& h) {
+      if (!intersect(s, r, t0, t1, h)) return false;
+      h.normal = glm::normalize(h.p - s.center - vec3_t<T>(T(0.3) * scale, 0, 0));
+      return true;
+    };
+    const auto bad = zt::normal_matches_surface(wrong, aim_at_sphere(s), 200, scale, 1.0);
+    CHECK_FALSE_MESSAGE(bad.ok, bad.message);
+    // A normal that is not unit length.
+    auto longer = [&](const ray_t<T>& r, T t0, T t1, hit_t<T>& h) {
+      if (!intersect(s, r, t0, t1, h)) return false;
+      h.normal *= T(2);
+      return true;
+    };
+    CHECK_FALSE(zt::normal_matches_surface(longer, aim_at_sphere(s), 50, scale, 1.0).ok);
+  }
+}
+
+TEST_CASE_TEMPLATE("testing: the reintersection check across scales", T, float, double) {
+  std::vector<zt::result> good, no_error, no_tmin;
+  for (const double e : {-4.0, -1.0, 0.0, 2.0, 4.0}) {
+    const T scale = T(std::pow(10.0, e));
+    const sphere_t<T> s{vec3_t<T>(T(3), T(-2), T(1)) * scale * T(7), scale};
+    auto isect = [&](const ray_t<T>& r, T t0, T t1, hit_t<T>& h) { return intersect(s, r, t0, t1, h); };
+    good.push_back(zt::no_self_hits<T>(isect, aim_at_sphere(s), 500));
+    // Broken 1: the shape claims its hit points are exact, so spawn_ray does not move them.
+    auto exact = [&](const ray_t<T>& r, T t0, T t1, hit_t<T>& h) {
+      if (!intersect(s, r, t0, t1, h)) return false;
+      h.p_error = vec3_t<T>(0);
+      return true;
+    };
+    no_error.push_back(zt::no_self_hits<T>(exact, aim_at_sphere(s), 500));
+    // Broken 2: t_min is ignored, so a hit a rounding behind the origin counts.
+    auto any_t = [&](const ray_t<T>& r, T, T t1, hit_t<T>& h) {
+      return intersect(s, r, -infinity<T>, t1, h);
+    };
+    no_tmin.push_back(zt::no_self_hits<T>(any_t, aim_at_sphere(s), 500));
+  }
+  const auto all_good = zt::all_of(good);
+  CHECK_MESSAGE(all_good.ok, all_good.message);
+  const auto r1 = zt::all_of(no_error), r2 = zt::all_of(no_tmin);
+  CHECK_FALSE_MESSAGE(r1.ok, r1.message);
+  CHECK_FALSE_MESSAGE(r2.ok, r2.message);
+  // Every scale catches the broken t_min (the origin sits on the surface, half the rays re-hit).
+  for (const auto& r : no_tmin) CHECK_FALSE_MESSAGE(r.ok, r.message);
+  // across_scales names the scale of each line.
+  const auto scaled = zt::across_scales(std::vector<T>{T(1), T(100)}, [](T s) {
+    return zt::result{s < T(10), "measured"};
+  });
+  CHECK_FALSE(scaled.ok);
+  CHECK(scaled.message == "ok: scale 1: measured\nFAILED: scale 100: measured");
+  // An aim that misses is reported, not silently passed.
+  const sphere_t<T> s{vec3_t<T>(0), T(1)};
+  auto isect = [&](const ray_t<T>& r, T t0, T t1, hit_t<T>& h) { return intersect(s, r, t0, t1, h); };
+  const auto away = zt::no_self_hits<T>(isect, [](rng&) { return ray_t<T>(vec3_t<T>(0, 0, 5), vec3_t<T>(0, 0, 1)); }, 50);
+  CHECK_FALSE(away.ok);
+  CHECK(away.message.find("check aim()") != std::string::npos);
+}
