@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# The course flow: builds the chapter programs one by one in course order (chapter folders sorted
+# naturally: 0.0, 1.0, ..., 1.9, 2.1, ..., 5.3) in an existing build tree and runs each once at its
+# default settings in a fresh temporary folder, then prints a table of build and run times.
+#   bash tools/course_flow.sh [BUILD_DIR]      (default: build; configure it first: tools/build.sh)
+# Window programs run under xvfb-run: one with --headless runs headless, others with a --frames
+# option draw 60 frames (their default is "until the window closes"). A chapter whose target was
+# not configured (a missing dependency) or that needs a display when there is none is skipped,
+# with the reason. Exit code 1 when a chapter fails to build or to run; a chapter whose run takes
+# longer than 10 s is flagged but does not fail. CTest runs this as book.course_flow.
+set -uo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="$(cd "${1:-$root/build}" 2>/dev/null && pwd)" || { echo "course_flow: no build folder ${1:-$root/build} (run tools/build.sh first)" >&2; exit 1; }
+[[ -f "$build/CMakeCache.txt" ]] || { echo "course_flow: $build is not a CMake build tree" >&2; exit 1; }
+limit=10         # seconds a chapter may take at its default settings
+run_timeout=300  # a run that hangs is killed and counted as failed
+window_frames=60
+xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
+
+# The targets the build tree knows (a chapter skipped at configure time has none).
+targets=$(cmake --build "$build" --target help 2>/dev/null)
+# Where the programs land: CMAKE_RUNTIME_OUTPUT_DIRECTORY is <build>/bin.
+bin="$build/bin"
+
+mapfile -t folders < <(cd "$root/chapters" && for d in */; do
+  d=${d%/}; [[ -f "$d/main.cpp" && $d =~ ^[0-9]+\.[0-9]+-[a-z0-9-]+$ ]] && echo "$d"; done | sort -V)
+
+logdir=$(mktemp -d)
+trap 'rm -rf "$logdir"' EXIT
+rows=()
+failed=0 skipped=0 slow=0 ok=0
+total_build=0 total_run=0
+secs() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", b - a }'; }
+add() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a + b }'; }
+
+for folder in "${folders[@]}"; do
+  slug=${folder#*-}
+  section=${folder%%-*}
+  if ! grep -Eq "(^|[ :])$slug(\$|[ :])" <<<"$targets"; then
+    rows+=("$section|$slug|-|-|-|skipped: not configured (a dependency in needs.txt is missing)")
+    skipped=$((skipped + 1))
+    echo "course_flow: $folder: skipped, target $slug is not configured" >&2
+    continue
+  fi
+  echo "course_flow: $folder: building $slug" >&2
+  t0=$EPOCHREALTIME
+  if ! cmake --build "$build" --target "$slug" >"$logdir/$slug.build" 2>&1; then
+    tb=$(secs "$t0" "$EPOCHREALTIME")
+    rows+=("$section|$slug|$tb|-|-|BUILD FAILED")
+    failed=$((failed + 1))
+    echo "course_flow: $folder: the build failed:" >&2
+    tail -n 20 "$logdir/$slug.build" >&2
+    continue
+  fi
+  tb=$(secs "$t0" "$EPOCHREALTIME")
+  total_build=$(add "$total_build" "$tb")
+
+  # How to run it: at its defaults, but a window program must stop by itself.
+  args=() wrap=() note="defaults"
+  help=$("$bin/$slug" --help 2>&1)
+  if [[ -f "$root/chapters/$folder/needs.txt" ]] && grep -Eq '^(glfw|epoxy)$' "$root/chapters/$folder/needs.txt"; then
+    if grep -q -- '--headless' <<<"$help"; then
+      args=(--headless) note="--headless"
+    elif grep -q -- '--frames' <<<"$help"; then
+      args=(--frames "$window_frames") note="--frames $window_frames"
+    fi
+    if [[ ${args[0]:-} != --headless ]]; then
+      if command -v xvfb-run >/dev/null; then
+        wrap=("${xvfb[@]}") note="$note, xvfb-run"
+      elif [[ -z "${DISPLAY:-}" ]]; then
+        rows+=("$section|$slug|$tb|-|-|skipped: needs a display (no DISPLAY, no xvfb-run)")
+        skipped=$((skipped + 1))
+        continue
+      fi
+    fi
+  fi
+
+  work=$(mktemp -d -p "$logdir")
+  t0=$EPOCHREALTIME
+  (cd "$work" && timeout "$run_timeout" "${wrap[@]}" "$bin/$slug" "${args[@]}") >"$logdir/$slug.run" 2>&1
+  code=$?
+  tr=$(secs "$t0" "$EPOCHREALTIME")
+  total_run=$(add "$total_run" "$tr")
+  if [[ $code -ne 0 ]]; then
+    note="RUN FAILED ($note)"
+    [[ $code -eq 124 ]] && note="RUN TIMED OUT after ${run_timeout} s ($note)"
+    failed=$((failed + 1))
+    echo "course_flow: $folder: '$slug ${args[*]}' exited with $code:" >&2
+    tail -n 20 "$logdir/$slug.run" >&2
+  else
+    ok=$((ok + 1))
+    if awk -v t="$tr" -v l="$limit" 'BEGIN { exit !(t > l) }'; then
+      note="$note; SLOW: over $limit s"
+      slow=$((slow + 1))
+    fi
+  fi
+  rows+=("$section|$slug|$tb|$tr|$code|$note")
+done
+
+printf '\n%-8s %-16s %9s %9s %5s  %s\n' chapter program build_s run_s exit note
+printf '%-8s %-16s %9s %9s %5s  %s\n' ------- ------- ------- ----- ---- ----
+for r in "${rows[@]}"; do
+  IFS='|' read -r c p b t e n <<<"$r"
+  printf '%-8s %-16s %9s %9s %5s  %s\n' "$c" "$p" "$b" "$t" "$e" "$n"
+done
+echo
+echo "summary: ${#folders[@]} chapters: $ok ran, $failed failed, $skipped skipped, $slow over $limit s;" \
+     "build ${total_build} s, run ${total_run} s in total (build tree $build, $(nproc) cores)"
+[[ $failed -eq 0 ]]
