@@ -1,0 +1,687 @@
+#pragma once
+// Scene files (book 4.1): a short YAML file that gives only what differs from the defaults
+// (scenes/README.md lists every key) becomes a zraka::scene.
+//
+//   const zraka::loaded_scene ls = zraka::load_scene_file("scenes/box.yaml");
+//   render with ls.sc;  std::cout << ls.resolved;   // the scene with every default filled in
+//
+// Strict by design: a student's typo must not silently become a default. An unknown or
+// duplicated key, a wrong type, a missing required field, a NaN, an infinite or out-of-range
+// number, an unknown material name, a missing file or a degenerate camera or shape each throw
+// zraka::error with "FILE:LINE:COLUMN: FIELD: what is wrong" (LINE and COLUMN from yaml-cpp's
+// Mark, counted from 1).
+//
+// The defaults come from the structs themselves (render_settings, camera_t, material, texture,
+// point_light_t) and from scene_file_defaults below, so there is one place for each.
+// Needs yaml-cpp and tinyobjloader (link yaml-cpp and tinyobjloader::tinyobjloader).
+#include <zraka/affine.hpp>
+#include <zraka/bpt.hpp>
+#include <zraka/error.hpp>
+#include <zraka/image.hpp>
+#include <zraka/resources.hpp>
+#include <zraka/scene.hpp>
+#include <zraka/tessellate.hpp>
+
+#include <tiny_obj_loader.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace zraka {
+
+// Defaults that belong to no struct.
+struct scene_file_defaults {
+  static constexpr double sphere_radius = 1.0;
+  static constexpr float area_light_radiance = 4.0f;
+  static constexpr int bezier_divs = 8;
+  static constexpr int max_spp = 65536;
+  static constexpr int max_depth = 64;
+  static constexpr std::size_t object_bvh_threshold = 4;  // an object BVH above this many (book 4.1 measures it)
+};
+
+struct loaded_scene {
+  scene sc;
+  std::string resolved;                     // YAML: the scene with every default filled in
+  std::vector<std::string> material_names;  // by material index ("" for lights' own)
+};
+
+namespace detail {
+
+// OBJ (Wavefront) to mesh, thesis Def 4.1.3 done fully (erratum C9): v, vn; faces f v, v/vt,
+// v//vn, v/vt/vn; negative indices count back from the last vertex; polygons are fanned into
+// triangles. vn are per-vertex normals referenced by the faces; a vertex used with two different
+// normals becomes two mesh vertices. Normals are kept only if every face corner has one
+// (otherwise the mesh is shaded flat). Texture coordinates are read but not used.
+inline mesh load_obj(const std::filesystem::path& path) {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  config.mtl_search_path = path.parent_path().string();
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path.string(), config)) {
+    std::string msg = reader.Error();
+    while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
+    throw error(path.string() + ": " + (msg.empty() ? "cannot read the OBJ file" : msg));
+  }
+  const tinyobj::attrib_t& a = reader.GetAttrib();
+  bool all_normals = true;
+  std::size_t corners = 0;
+  const long long nv = static_cast<long long>(a.vertices.size() / 3), nn = static_cast<long long>(a.normals.size() / 3);
+  for (const auto& s : reader.GetShapes())
+    for (const auto& idx : s.mesh.indices) {
+      // The loader does not catch every index beyond the end; a wrong one must not read past it.
+      if (idx.vertex_index < 0 || idx.vertex_index >= nv)
+        throw error(path.string() + ": a face refers to vertex " + std::to_string(idx.vertex_index + 1) +
+                    ", but there are only " + std::to_string(nv));
+      if (idx.normal_index >= nn)
+        throw error(path.string() + ": a face refers to normal " + std::to_string(idx.normal_index + 1) +
+                    ", but there are only " + std::to_string(nn));
+      all_normals = all_normals && idx.normal_index >= 0;
+      ++corners;
+    }
+  if (corners == 0) throw error(path.string() + ": no faces");
+  mesh m;
+  std::map<std::pair<int, int>, std::uint32_t> vertex_of;  // (position, normal) -> mesh vertex
+  // [listing obj-vertex]
+  auto vertex = [&](const tinyobj::index_t& idx) {
+    const int n = all_normals ? idx.normal_index : -1;
+    const auto [it, is_new] = vertex_of.try_emplace({idx.vertex_index, n}, std::uint32_t(m.positions.size()));
+    if (is_new) {
+      const std::size_t v = std::size_t(idx.vertex_index) * 3;
+      m.positions.push_back(vec3(a.vertices[v], a.vertices[v + 1], a.vertices[v + 2]));
+      if (!is_finite(m.positions.back())) throw error(path.string() + ": a vertex is not finite");
+      if (n >= 0) {
+        const std::size_t k = std::size_t(n) * 3;
+        m.normals.push_back(normalize_or_zero(vec3(a.normals[k], a.normals[k + 1], a.normals[k + 2])));
+      }
+    }
+    return it->second;
+  };
+  // [end]
+  for (const auto& s : reader.GetShapes()) {
+    std::size_t first = 0;
+    for (const unsigned char fv : s.mesh.num_face_vertices) {
+      if (fv != 3) throw error(path.string() + ": a face with " + std::to_string(fv) + " vertices after triangulation");
+      m.triangles.push_back({vertex(s.mesh.indices[first]), vertex(s.mesh.indices[first + 1]),
+                             vertex(s.mesh.indices[first + 2])});
+      first += 3;
+    }
+  }
+  return m;
+}
+
+class scene_reader {
+ public:
+  scene_reader(std::string name, std::filesystem::path dir) : name_(std::move(name)), dir_(std::move(dir)) {}
+
+  loaded_scene read(const std::string& text) {
+    YAML::Node loaded;
+    try {
+      loaded = YAML::Load(text);
+    } catch (const YAML::ParserException& e) {
+      throw error(where(e.mark) + "YAML syntax: " + e.msg);
+    }
+    const YAML::Node& root = loaded;  // const: looking up a key must not add it
+    if (!root || root.IsNull()) throw error(name_ + ": the scene file is empty");
+    if (!root.IsMap()) fail(root, "", "a scene file is a map with the sections settings, camera, materials, lights, objects");
+    keys(root, "", {"settings", "camera", "materials", "lights", "objects"});
+
+    settings(root["settings"]);
+    camera(root["camera"]);
+    materials(root["materials"]);
+    lights(root["lights"]);
+    objects(root["objects"], root);
+    out_.sc.build_acceleration(scene_file_defaults::object_bvh_threshold);
+
+    YAML::Emitter em;
+    em << resolved_;
+    out_.resolved = em.c_str();
+    return std::move(out_);
+  }
+
+ private:
+  std::string name_;
+  std::filesystem::path dir_;
+  loaded_scene out_;
+  YAML::Node resolved_;
+  std::map<std::string, int> material_index_;
+
+  // ---------------------------------------------------------------- errors
+  std::string where(const YAML::Mark& m) const {
+    if (m.is_null()) return name_ + ": ";
+    return name_ + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1) + ": ";
+  }
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& field, const std::string& what) const {
+    throw error(where(n.Mark()) + (field.empty() ? "" : field + ": ") + what);
+  }
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+  static std::string scalar_text(const YAML::Node& n) {
+    if (n.IsScalar()) return "'" + n.Scalar() + "'";
+    if (n.IsSequence() && n.size() == 0) return "an empty list";
+    return n.IsSequence() ? "a list" : n.IsMap() ? "a map" : "nothing";
+  }
+
+  // [listing strict-keys]
+  // Every key of map n must be one of `allowed`, and appear once.
+  void keys(const YAML::Node& n, const std::string& path, std::initializer_list<const char*> allowed) const {
+    if (!n.IsMap()) fail(n, path, "expected a map ({key: value, ...}), got " + scalar_text(n));
+    std::set<std::string> seen;
+    for (const auto& kv : n) {
+      const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : "?";
+      if (!seen.insert(k).second) fail(kv.first, join(path, k), "duplicate key");
+      bool ok = false;
+      std::string list;
+      for (const char* a : allowed) {
+        ok = ok || k == a;
+        list += (list.empty() ? "" : ", ") + std::string(a);
+      }
+      if (!ok) fail(kv.first, join(path, k), "unknown key (expected one of: " + list + ")");
+    }
+  }
+  // [end]
+
+  // ---------------------------------------------------------------- values
+  double number(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsScalar()) fail(n, field, "expected a number, got " + scalar_text(n));
+    double x;
+    try {
+      x = n.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(n, field, "expected a number, got " + scalar_text(n));
+    }
+    if (!std::isfinite(x)) fail(n, field, "must be finite, got " + n.Scalar());
+    return x;
+  }
+  long long integer(const YAML::Node& n, const std::string& field, long long lo, long long hi) const {
+    if (!n.IsScalar()) fail(n, field, "expected an integer, got " + scalar_text(n));
+    long long x;
+    try {
+      x = n.as<long long>();
+    } catch (const YAML::Exception&) {
+      fail(n, field, "expected an integer, got " + scalar_text(n));
+    }
+    if (x < lo || x > hi)
+      fail(n, field, "must be in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + n.Scalar());
+    return x;
+  }
+  vec3 vector3(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsSequence() || n.size() != 3) fail(n, field, "expected [x, y, z], got " + scalar_text(n));
+    return {number(n[0], field + "[0]"), number(n[1], field + "[1]"), number(n[2], field + "[2]")};
+  }
+  rgb colour(const YAML::Node& n, const std::string& field) const {
+    vec3 c;
+    if (n.IsScalar()) c = vec3(number(n, field));
+    else if (n.IsSequence() && n.size() == 3) c = vector3(n, field);
+    else fail(n, field, "expected a colour: a number or [r, g, b], got " + scalar_text(n));
+    if (c.x < 0 || c.y < 0 || c.z < 0) fail(n, field, "a colour must not be negative");
+    return rgb(c);
+  }
+  std::string text(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsScalar()) fail(n, field, "expected a name, got " + scalar_text(n));
+    return n.Scalar();
+  }
+  // By value: assigning yaml-cpp nodes rebinds what they refer to, copying does not.
+  YAML::Node required(const YAML::Node& map, const char* key, const std::string& path) const {
+    const YAML::Node found = map[key];
+    if (!found) fail(map, join(path, key), "required, but missing");
+    return found;
+  }
+
+  // A number as a person would type it: 7 significant digits (yaml-cpp would write all 17 of
+  // the binary value, 0.60000002384185791 for a float 0.6).
+  static YAML::Node num(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.7g", x);
+    return YAML::Node(std::string(buf));
+  }
+  static YAML::Node flow(const vec3& v) {
+    YAML::Node s;
+    for (int i = 0; i < 3; ++i) s.push_back(num(v[i]));
+    s.SetStyle(YAML::EmitterStyle::Flow);
+    return s;
+  }
+  static YAML::Node flow(const rgb& c) { return flow(vec3(c)); }
+
+  // ---------------------------------------------------------------- sections
+  void settings(const YAML::Node& n) {
+    render_settings& s = out_.sc.settings;
+    if (n) {
+      keys(n, "settings", {"width", "height", "spp", "max_depth", "seed", "background", "ambient"});
+      const long long big = 1LL << 40;
+      if (n["width"]) s.width = int(integer(n["width"], "settings.width", 1, image::max_side));
+      if (n["height"]) s.height = int(integer(n["height"], "settings.height", 1, image::max_side));
+      if (n["spp"]) s.spp = int(integer(n["spp"], "settings.spp", 1, scene_file_defaults::max_spp));
+      if (n["max_depth"])
+        s.max_depth = int(integer(n["max_depth"], "settings.max_depth", 1, scene_file_defaults::max_depth));
+      if (n["seed"]) s.seed = std::uint64_t(integer(n["seed"], "settings.seed", 0, big));
+      if (n["background"]) out_.sc.background = colour(n["background"], "settings.background");
+      if (n["ambient"]) out_.sc.ambient = colour(n["ambient"], "settings.ambient");
+      try {
+        image::check_size(s.width, s.height);
+      } catch (const error& e) {
+        fail(n, "settings", e.what());
+      }
+    }
+    YAML::Node r = resolved_["settings"];
+    r["width"] = s.width;
+    r["height"] = s.height;
+    r["spp"] = s.spp;
+    r["max_depth"] = s.max_depth;
+    r["seed"] = s.seed;
+    r["background"] = flow(out_.sc.background);
+    r["ambient"] = flow(out_.sc.ambient);
+  }
+
+  void camera(const YAML::Node& n) {
+    camera_t<double>& c = out_.sc.camera;
+    if (n) {
+      keys(n, "camera", {"position", "look_at", "up", "vfov", "aperture", "focus_distance"});
+      if (n["position"]) c.position = vector3(n["position"], "camera.position");
+      if (n["look_at"]) c.look_at = vector3(n["look_at"], "camera.look_at");
+      if (n["up"]) c.up = vector3(n["up"], "camera.up");
+      if (n["vfov"]) c.vfov_degrees = number(n["vfov"], "camera.vfov");
+      if (n["aperture"]) c.aperture = number(n["aperture"], "camera.aperture");
+      if (n["focus_distance"]) c.focus_distance = number(n["focus_distance"], "camera.focus_distance");
+    }
+    try {
+      (void)out_.sc.prepared_camera();  // throws for a camera that defines no view
+    } catch (const error& e) {
+      std::string msg = e.what();
+      if (msg.rfind("camera: ", 0) == 0) msg = msg.substr(8);
+      fail(n ? n : YAML::Node(), "camera", msg);
+    }
+    YAML::Node r = resolved_["camera"];
+    r["position"] = flow(c.position);
+    r["look_at"] = flow(c.look_at);
+    r["up"] = flow(c.up);
+    r["vfov"] = num(c.vfov_degrees);
+    r["aperture"] = num(c.aperture);
+    r["focus_distance"] = num(c.focus_distance);
+  }
+
+  texture albedo(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsMap()) return texture::solid(colour(n, field));
+    if (n.size() != 1 || !n["checker"]) fail(n, field, "expected a colour or {checker: {even, odd, scale}}");
+    const YAML::Node c = n["checker"];
+    keys(c, field + ".checker", {"even", "odd", "scale"});
+    texture t = texture::checker(texture{}.a, texture{}.b, texture{}.cell);
+    if (c["even"]) t.a = colour(c["even"], field + ".checker.even");
+    if (c["odd"]) t.b = colour(c["odd"], field + ".checker.odd");
+    if (c["scale"]) {
+      t.cell = number(c["scale"], field + ".checker.scale");
+      if (!(t.cell > 0)) fail(c["scale"], field + ".checker.scale", "must be positive");
+    }
+    return t;
+  }
+  static YAML::Node albedo_node(const texture& t) {
+    if (t.type == texture::kind::solid) return flow(t.a);
+    YAML::Node n, c;
+    c["even"] = flow(t.a);
+    c["odd"] = flow(t.b);
+    c["scale"] = num(t.cell);
+    n["checker"] = c;
+    n.SetStyle(YAML::EmitterStyle::Flow);
+    return n;
+  }
+
+  void materials(const YAML::Node& n) {
+    out_.sc.add_material(material{});  // "default"
+    out_.material_names.push_back("default");
+    material_index_["default"] = 0;
+    if (n) {
+      if (!n.IsMap()) fail(n, "materials", "expected a map of name: {type: ..., ...}, got " + scalar_text(n));
+      keys_any(n, "materials");
+      for (const auto& kv : n) {
+        const std::string name = kv.first.Scalar();
+        const int index = material_index_.count(name) ? material_index_[name] : out_.sc.add_material(material{});
+        if (!material_index_.count(name)) out_.material_names.push_back(name);
+        material_index_[name] = index;
+        out_.sc.materials[std::size_t(index)] = one_material(kv.second, "materials." + name);
+      }
+    }
+    for (std::size_t i = 0; i < out_.material_names.size(); ++i) {
+      const material& m = out_.sc.materials[i];
+      YAML::Node r;
+      switch (m.kind) {
+        case material_kind::lambertian:
+          r["type"] = "lambertian";
+          r["albedo"] = albedo_node(m.albedo);
+          break;
+        case material_kind::fuzzy_metal:
+          r["type"] = "metal";
+          r["albedo"] = albedo_node(m.albedo);
+          r["fuzz"] = num(m.fuzz);
+          break;
+        case material_kind::dielectric:
+          r["type"] = "dielectric";
+          r["ior"] = num(m.ior);
+          break;
+        case material_kind::emitter:
+          r["type"] = "emitter";
+          r["radiance"] = flow(m.radiance);
+          break;
+        case material_kind::phong:
+          r["type"] = "phong";
+          r["kd"] = flow(m.kd);
+          r["ks"] = flow(m.ks);
+          r["shininess"] = num(m.shininess);
+          break;
+      }
+      r.SetStyle(YAML::EmitterStyle::Flow);
+      resolved_["materials"][out_.material_names[i]] = r;
+    }
+  }
+  // A map whose keys are names (materials): only duplicates are errors.
+  void keys_any(const YAML::Node& n, const std::string& path) const {
+    std::set<std::string> seen;
+    for (const auto& kv : n) {
+      if (!kv.first.IsScalar()) fail(kv.first, path, "a material name must be a plain word");
+      if (!seen.insert(kv.first.Scalar()).second) fail(kv.first, join(path, kv.first.Scalar()), "duplicate name");
+    }
+  }
+
+  material one_material(const YAML::Node& n, const std::string& path) {
+    if (!n.IsMap()) fail(n, path, "expected {type: ..., ...}, got " + scalar_text(n));
+    const std::string type = n["type"] ? text(n["type"], path + ".type") : "lambertian";
+    material m;
+    if (type == "lambertian") {
+      keys(n, path, {"type", "albedo"});
+      if (n["albedo"]) m.albedo = albedo(n["albedo"], path + ".albedo");
+    } else if (type == "metal") {
+      keys(n, path, {"type", "albedo", "fuzz"});
+      m.kind = material_kind::fuzzy_metal;
+      if (n["albedo"]) m.albedo = albedo(n["albedo"], path + ".albedo");
+      if (n["fuzz"]) {
+        m.fuzz = number(n["fuzz"], path + ".fuzz");
+        if (m.fuzz < 0 || m.fuzz > 1) fail(n["fuzz"], path + ".fuzz", "must be in [0, 1], got " + n["fuzz"].Scalar());
+      }
+    } else if (type == "dielectric") {
+      keys(n, path, {"type", "ior"});
+      m.kind = material_kind::dielectric;
+      if (n["ior"]) {
+        m.ior = number(n["ior"], path + ".ior");
+        if (!(m.ior > 0)) fail(n["ior"], path + ".ior", "must be positive, got " + n["ior"].Scalar());
+      }
+    } else if (type == "emitter") {
+      keys(n, path, {"type", "radiance"});
+      m = material::emitter(rgb(scene_file_defaults::area_light_radiance));
+      if (n["radiance"]) m.radiance = colour(n["radiance"], path + ".radiance");
+    } else if (type == "phong") {
+      keys(n, path, {"type", "kd", "ks", "shininess"});
+      m.kind = material_kind::phong;
+      if (n["kd"]) m.kd = colour(n["kd"], path + ".kd");
+      if (n["ks"]) m.ks = colour(n["ks"], path + ".ks");
+      if (n["shininess"]) {
+        m.shininess = number(n["shininess"], path + ".shininess");
+        if (!(m.shininess > 0)) fail(n["shininess"], path + ".shininess", "must be positive");
+      }
+    } else {
+      fail(n["type"], path + ".type",
+           "unknown material type '" + type + "' (expected lambertian, metal, dielectric, emitter or phong)");
+    }
+    return m;
+  }
+
+  void lights(const YAML::Node& n) {
+    if (!n) return;
+    if (!n.IsSequence()) fail(n, "lights", "expected a list (- {type: point, ...}), got " + scalar_text(n));
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const YAML::Node l = n[i];
+      const std::string path = "lights[" + std::to_string(i) + "]";
+      if (!l.IsMap()) fail(l, path, "expected {type: ..., ...}, got " + scalar_text(l));
+      const std::string type = text(required(l, "type", path), path + ".type");
+      YAML::Node r;
+      r["type"] = type;
+      if (type == "point") {
+        keys(l, path, {"type", "position", "intensity"});
+        point_light_t<double> p;
+        p.position = vector3(required(l, "position", path), path + ".position");
+        if (l["intensity"]) p.intensity = colour(l["intensity"], path + ".intensity");
+        out_.sc.add(p);
+        r["position"] = flow(p.position);
+        r["intensity"] = flow(p.intensity);
+      } else if (type == "quad" || type == "sphere") {
+        material m = material::emitter(rgb(scene_file_defaults::area_light_radiance));
+        if (type == "quad") {
+          keys(l, path, {"type", "corner", "u", "v", "radiance"});
+        } else {
+          keys(l, path, {"type", "center", "radius", "radiance"});
+        }
+        if (l["radiance"]) m.radiance = colour(l["radiance"], path + ".radiance");
+        const int mat = out_.sc.add_material(m);
+        out_.material_names.push_back("");
+        if (type == "quad") {
+          const quad q = quad_of(l, path);
+          out_.sc.add(q, mat);
+          r["corner"] = flow(q.corner);
+          r["u"] = flow(q.u);
+          r["v"] = flow(q.v);
+        } else {
+          const vec3 c = l["center"] ? vector3(l["center"], path + ".center") : vec3(0);
+          const double rad = radius(required(l, "radius", path), path + ".radius");
+          out_.sc.add(sphere{c, rad}, mat);
+          r["center"] = flow(c);
+          r["radius"] = num(rad);
+        }
+        r["radiance"] = flow(m.radiance);
+      } else {
+        fail(l["type"], path + ".type", "unknown light type '" + type + "' (expected point, quad or sphere)");
+      }
+      r.SetStyle(YAML::EmitterStyle::Flow);
+      resolved_["lights"].push_back(r);
+    }
+  }
+
+  double radius(const YAML::Node& n, const std::string& field) const {
+    const double r = number(n, field);
+    if (!(r > 0)) fail(n, field, "must be positive, got " + n.Scalar());
+    return r;
+  }
+  quad quad_of(const YAML::Node& n, const std::string& path) const {
+    const quad q{vector3(required(n, "corner", path), path + ".corner"), vector3(required(n, "u", path), path + ".u"),
+                 vector3(required(n, "v", path), path + ".v")};
+    if (!q.valid()) fail(n, path, "u and v are parallel (or zero): the quad has no area");
+    return q;
+  }
+
+  // scale, then rotate, then translate.
+  affine transform(const YAML::Node& n, const std::string& path, vec3& scale_out) {
+    keys(n, path, {"scale", "rotate", "translate"});
+    affine a;
+    vec3 s(1);
+    if (n["scale"]) {
+      s = n["scale"].IsSequence() ? vector3(n["scale"], path + ".scale") : vec3(number(n["scale"], path + ".scale"));
+      if (s.x == 0 || s.y == 0 || s.z == 0) fail(n["scale"], path + ".scale", "a scale must not be zero");
+      a = affine::scale(s);
+    }
+    if (n["rotate"]) {
+      const YAML::Node r = n["rotate"];
+      keys(r, path + ".rotate", {"axis", "degrees"});
+      const vec3 axis = vector3(required(r, "axis", path + ".rotate"), path + ".rotate.axis");
+      if (normalize_or_zero(axis) == vec3(0)) fail(r["axis"], path + ".rotate.axis", "the axis must not be zero");
+      const double deg = number(required(r, "degrees", path + ".rotate"), path + ".rotate.degrees");
+      a = affine::rotate(normalize_or_zero(axis), deg * pi<double> / 180) * a;
+    }
+    if (n["translate"]) a = affine::translate(vector3(n["translate"], path + ".translate")) * a;
+    scale_out = s;
+    return a;
+  }
+
+  // [listing find-file]
+  std::filesystem::path find_file(const YAML::Node& n, const std::string& field) const {
+    const std::filesystem::path p(text(n, field));
+    if (p.is_absolute()) {
+      if (std::filesystem::exists(p)) return p;
+      fail(n, field, "file " + p.string() + " not found");
+    }
+    for (const auto& base : {dir_, resource_root(), resource_root() / "scenes"})
+      if (std::filesystem::exists(base / p)) return base / p;
+    fail(n, field, "file '" + p.string() + "' not found (looked next to the scene file, in " +
+                       resource_root().string() + " and in its scenes/)");
+  }
+  // [end]
+
+  void objects(const YAML::Node& n, const YAML::Node& root) {
+    if (!n) fail(root, "objects", "the scene has no objects: add a list 'objects:'");
+    if (!n.IsSequence() || n.size() == 0)
+      fail(n, "objects", "expected a non-empty list (- {type: sphere, ...}), got " + scalar_text(n));
+    for (std::size_t i = 0; i < n.size(); ++i) one_object(n[i], "objects[" + std::to_string(i) + "]");
+  }
+
+  void one_object(const YAML::Node& o, const std::string& path) {
+    if (!o.IsMap()) fail(o, path, "expected {type: ..., ...}, got " + scalar_text(o));
+    const std::string type = text(required(o, "type", path), path + ".type");
+    static const std::map<std::string, std::vector<const char*>> own = {
+        {"sphere", {"center", "radius"}}, {"plane", {"point", "normal"}}, {"triangle", {"a", "b", "c"}},
+        {"quad", {"corner", "u", "v"}},   {"box", {"min", "max"}},        {"mesh", {"file"}},
+        {"bezier", {"file", "divs"}}};
+    const auto it = own.find(type);
+    if (it == own.end())
+      fail(o["type"], path + ".type",
+           "unknown object type '" + type + "' (expected sphere, plane, triangle, quad, box, mesh or bezier)");
+    {
+      std::set<std::string> seen;
+      std::string list = "type, name, material, transform";
+      for (const char* k : it->second) list += std::string(", ") + k;
+      for (const auto& kv : o) {
+        const std::string k = kv.first.Scalar();
+        if (!seen.insert(k).second) fail(kv.first, join(path, k), "duplicate key");
+        bool ok = k == "type" || k == "name" || k == "material" || k == "transform";
+        for (const char* a : it->second) ok = ok || k == a;
+        if (!ok) fail(kv.first, join(path, k), "unknown key for a " + type + " (expected one of: " + list + ")");
+      }
+    }
+    YAML::Node r;
+    r["type"] = type;
+    std::string label = path;
+    if (o["name"]) {
+      r["name"] = text(o["name"], path + ".name");
+      label = path + " (" + o["name"].Scalar() + ")";
+    }
+    std::string mat_name = "default";
+    if (o["material"]) mat_name = text(o["material"], label + ".material");
+    const auto m = material_index_.find(mat_name);
+    if (m == material_index_.end()) {
+      std::string known;
+      for (const auto& kv : material_index_) known += (known.empty() ? "" : ", ") + kv.first;
+      fail(o["material"], label + ".material", "unknown material '" + mat_name + "' (defined: " + known + ")");
+    }
+    const int mat = m->second;
+    vec3 s(1);
+    affine a;
+    if (o["transform"]) a = transform(o["transform"], label + ".transform", s);
+    scene& sc = out_.sc;
+
+    if (type == "sphere") {
+      const vec3 c = o["center"] ? vector3(o["center"], label + ".center") : vec3(0);
+      const double rad = o["radius"] ? radius(o["radius"], label + ".radius") : scene_file_defaults::sphere_radius;
+      if (!(std::abs(s.x) == std::abs(s.y) && std::abs(s.y) == std::abs(s.z)))
+        fail(o["transform"], label + ".transform.scale", "a sphere takes only a uniform scale");
+      const sphere sp{a.point(c), rad * std::abs(s.x)};
+      if (!std::isfinite(sp.radius) || !is_finite(sp.center)) fail(o, label, "the transformed sphere is not finite");
+      sc.add(sp, mat);
+      r["center"] = flow(c);
+      r["radius"] = num(rad);
+    } else if (type == "plane") {
+      const vec3 p = o["point"] ? vector3(o["point"], label + ".point") : vec3(0);
+      const vec3 nn = o["normal"] ? vector3(o["normal"], label + ".normal") : vec3(0, 1, 0);
+      if (normalize_or_zero(nn) == vec3(0)) fail(o["normal"], label + ".normal", "the normal must not be zero");
+      sc.add(plane::from_point_normal(a.point(p), a.normal(nn)), mat);
+      r["point"] = flow(p);
+      r["normal"] = flow(nn);
+    } else if (type == "triangle") {
+      const triangle t{vector3(required(o, "a", label), label + ".a"), vector3(required(o, "b", label), label + ".b"),
+                       vector3(required(o, "c", label), label + ".c")};
+      if (t.normal() == vec3(0)) fail(o, label, "the three vertices are on one line: the triangle has no area");
+      sc.add(triangle{a.point(t.a), a.point(t.b), a.point(t.c)}, mat);
+      r["a"] = flow(t.a);
+      r["b"] = flow(t.b);
+      r["c"] = flow(t.c);
+    } else if (type == "quad") {
+      const quad q = quad_of(o, label);
+      sc.add(quad{a.point(q.corner), a.vector(q.u), a.vector(q.v)}, mat);
+      r["corner"] = flow(q.corner);
+      r["u"] = flow(q.u);
+      r["v"] = flow(q.v);
+    } else if (type == "box") {
+      const vec3 lo = vector3(required(o, "min", label), label + ".min");
+      const vec3 hi = vector3(required(o, "max", label), label + ".max");
+      if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) fail(o, label, "min must be below max on every axis");
+      for (const quad& q : box_faces(lo, hi)) sc.add(quad{a.point(q.corner), a.vector(q.u), a.vector(q.v)}, mat);
+      r["min"] = flow(lo);
+      r["max"] = flow(hi);
+    } else if (type == "mesh" || type == "bezier") {
+      const std::filesystem::path file = find_file(required(o, "file", label), label + ".file");
+      r["file"] = o["file"].Scalar();
+      const int divs = o["divs"] ? int(integer(o["divs"], label + ".divs", 1, max_tessellation_divs))
+                                 : scene_file_defaults::bezier_divs;
+      if (type == "bezier") r["divs"] = divs;
+      mesh msh;
+      try {
+        if (type == "mesh") {
+          msh = load_obj(file);
+          transform_mesh(msh, a);
+        } else {
+          msh = tessellate(load_bpt(file).all_patches(), divs, a);
+        }
+      } catch (const error& e) {  // name the file as the scene does, not by its full path
+        std::string msg = e.what();
+        if (msg.rfind(file.string(), 0) == 0) msg = o["file"].Scalar() + msg.substr(file.string().size());
+        fail(o["file"], label + ".file", msg);
+      }
+      sc.add(std::move(msh), mat);
+    }
+    r["material"] = mat_name;
+    if (o["transform"]) r["transform"] = o["transform"];
+    r.SetStyle(YAML::EmitterStyle::Flow);
+    resolved_["objects"].push_back(r);
+  }
+
+  // Six quads facing out (u x v along the outward normal).
+  static std::vector<quad> box_faces(const vec3& lo, const vec3& hi) {
+    const vec3 d = hi - lo;
+    const vec3 dx(d.x, 0, 0), dy(0, d.y, 0), dz(0, 0, d.z);
+    return {quad{lo, dz, dy},           quad{vec3(hi.x, lo.y, lo.z), dy, dz},   // -x, +x
+            quad{lo, dx, dz},           quad{vec3(lo.x, hi.y, lo.z), dz, dx},   // -y, +y
+            quad{lo, dy, dx},           quad{vec3(lo.x, lo.y, hi.z), dx, dy}};  // -z, +z
+  }
+
+  static void transform_mesh(mesh& m, const affine& a) {
+    for (vec3& p : m.positions) p = a.point(p);
+    for (vec3& n : m.normals) n = a.normal(n);
+    if (glm::determinant(a.linear) < 0)  // a mirror turns the winding: turn it back
+      for (auto& t : m.triangles) std::swap(t[1], t[2]);
+  }
+};
+
+}  // namespace detail
+
+// Reads a scene from YAML text; `name` is used in error messages and `dir` to find the files
+// the scene names.
+inline loaded_scene parse_scene(const std::string& text, const std::string& name,
+                                const std::filesystem::path& dir = ".") {
+  return detail::scene_reader(name, dir).read(text);
+}
+
+// Reads a scene file: a path as given, or relative to the resource root (resources.hpp).
+inline loaded_scene load_scene_file(const std::filesystem::path& path) {
+  const std::filesystem::path p = resource_path(path.string());
+  std::ifstream in(p);
+  if (!in) throw error("cannot open scene file " + p.string());
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scene(ss.str(), path.string(), p.parent_path());
+}
+
+}  // namespace zraka
