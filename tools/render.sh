@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
-# README command 1: set up, build, and render the default image to build/out/default.png.
+# README command 1: set up, build the Whitted ray tracer, and render the default scene
+# (scenes/default.yaml) to build/out/default.png.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash tools/build.sh
+bash tools/setup.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build --target whitted -j "$(nproc)"
 mkdir -p build/out
-./build/bin/normals --out build/out/default.png
+./build/bin/whitted scenes/default.yaml --out build/out/default.png
 echo "rendered: $(pwd)/build/out/default.png"
