@@ -134,3 +134,37 @@ TEST_CASE("material: emitters shine from the front only and do not scatter") {
   CHECK(is_specular(material::dielectric(1.5)));
   CHECK_FALSE(is_specular(material::lambertian(rgb(1))));
 }
+
+TEST_CASE("material: two-sided emitters and glowing surfaces shine from both faces") {
+  const material lamp = material::emitter(rgb(2), true);
+  CHECK(emitted(lamp, floor_hit(true)) == rgb(2));
+  CHECK(emitted(lamp, floor_hit(false)) == rgb(2));
+  material glow = material::lambertian(rgb(0.5f));  // a furnace wall: reflects and glows
+  glow.radiance = rgb(1);
+  CHECK(emits(glow));
+  CHECK_FALSE(emits(material::lambertian(rgb(1))));
+  CHECK(emitted(glow, floor_hit(true)) == rgb(1));
+  CHECK(emitted(glow, floor_hit(false)) == rgb(0));  // one-sided unless two_sided is set
+  glow.two_sided = true;
+  CHECK(emitted(glow, floor_hit(false)) == rgb(1));
+  rng g(3);
+  CHECK(scatter(glow, -incoming(20), floor_hit(false), g));  // and it still reflects, from either side
+}
+
+TEST_CASE("material: hollow glass (IOR ratio below 1) reflects totally beyond its critical angle") {
+  // An air bubble in glass: n_inside / n_outside = 1/1.5. A ray entering it from the glass at
+  // 60 degrees (sin 60 * 1.5 = 1.3 > 1) cannot refract: it is reflected every time.
+  const material bubble = material::dielectric(1 / 1.5);
+  rng g(4);
+  for (int i = 0; i < 100; ++i) {
+    const auto s = scatter(bubble, incoming(60), floor_hit(true), g);
+    REQUIRE(s);
+    CHECK(s->direction.y > 0);  // back up: reflected
+  }
+  int refracted = 0;  // at 10 degrees most of it goes in
+  for (int i = 0; i < 1000; ++i) refracted += scatter(bubble, incoming(10), floor_hit(true), g)->direction.y < 0;
+  CHECK(refracted > 900);
+  CHECK_THROWS_AS(material::dielectric(0), error);
+  CHECK_THROWS_AS(material::dielectric(-1.5), error);
+  CHECK_THROWS_AS(material::emitter(rgb(-1)), error);
+}

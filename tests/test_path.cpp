@@ -1,3 +1,4 @@
+#include <zraka/integrators.hpp>
 #include <zraka/path.hpp>
 
 #include <doctest/doctest.h>
@@ -51,4 +52,32 @@ TEST_CASE("path: next-event estimation and naive path tracing agree on the mean"
   // 5 combined standard errors: the two are independent unbiased estimates of one value.
   CHECK(std::abs(nee - naive) < 5 * std::sqrt(se_nee * se_nee + se_naive * se_naive));
   CHECK(se_nee < se_naive * std::sqrt(10.0));  // NEE with 10x fewer samples is still less noisy
+}
+
+TEST_CASE("path: path_radiance (next_event on) and the nee integrator estimate the same value") {
+  // path.hpp's compact tracer and integrators.hpp's nee share the algorithm; their means at one
+  // floor point under a quad light must agree within 5 combined standard errors.
+  scene sc;
+  const int grey = sc.add_material(material::lambertian(rgb(0.6f)));
+  sc.add(quad{{-3, 0, 3}, {6, 0, 0}, {0, 0, -6}}, grey);
+  sc.add(quad{{-0.5, 2, -0.5}, {1, 0, 0}, {0, 0, 1}}, sc.add_material(material::emitter(rgb(10))));
+  const ray cam({0.7, 0.8, 2.5}, vec3(0.3, 0.0, 0.3) - vec3(0.7, 0.8, 2.5));
+  integrator_options io;
+  io.method = integrator::nee;
+  io.max_depth = 4;
+  const path_tracer tracer(sc, io);
+  path_options po;
+  po.max_depth = 4;
+  double s[2] = {0, 0}, s2[2] = {0, 0};
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    std::uint64_t rays = 0;
+    rng g0(1, 0, std::uint32_t(i)), g1(2, 0, std::uint32_t(i));
+    const double a = path_radiance(sc, cam, g0, po, rays).x, b = tracer(cam, g1, rays).x;
+    s[0] += a, s2[0] += a * a, s[1] += b, s2[1] += b * b;
+  }
+  const double m0 = s[0] / n, m1 = s[1] / n;
+  const double se = std::sqrt((s2[0] / n - m0 * m0) / n + (s2[1] / n - m1 * m1) / n);
+  INFO("path_radiance " << m0 << ", nee " << m1 << ", combined se " << se);
+  CHECK(std::abs(m0 - m1) < 5 * se);
 }

@@ -73,3 +73,28 @@ for g in reflect both refract; do
 done
 "$bin/whitted" scenes/teapot.yaml --spp 16 --out 2.2-teapot.png >/dev/null && cp 2.2-teapot.png "$fig/"
 "$bin/whitted" scenes/box.yaml --spp 16 --depth 1 --out 2.2-box-depth1.png >/dev/null && cp 2.2-box-depth1.png "$fig/"
+# --- realtime (4.3)
+"$bin/realtime" --headless --width 320 --height 240 --frames 64 --out 4.3-spheres.png >/dev/null && cp 4.3-spheres.png "$fig/"
+"$bin/realtime" --headless --scene cornell --width 240 --height 240 --frames 64 --out 4.3-cornell.png >/dev/null && cp 4.3-cornell.png "$fig/"
+"$bin/realtime" --headless --width 200 --height 200 --frames 1 --weak-seed --out 4.3-weak-seed.png >/dev/null && cp 4.3-weak-seed.png "$fig/"
+"$bin/realtime" --headless --width 200 --height 200 --frames 1 --out 4.3-hashed-seed.png >/dev/null && cp 4.3-hashed-seed.png "$fig/"
+xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
+"${xvfb[@]}" "$bin/realtime" --frames 16 --width 320 --height 240 --scene cornell-spheres --screenshot 4.3-viewer.png >/dev/null && cp 4.3-viewer.png "$fig/"
+# --- 2.3, 4.2 (path tracing; several minutes on two cores)
+"$bin/pathtrace" --scene cornell-glass --width 160 --height 160 --spp 256 --out 2.3-pathtrace >/dev/null && cp 2.3-pathtrace.png "$fig/"
+"$bin/pathtrace" --scene cornell-glass --width 64 --height 64 --centre --spp 2048 --seed 1001 --pfm ref.pfm --out ref >/dev/null
+for m in naive nee mis; do
+  "$bin/pathtrace" --scene cornell-glass --width 64 --height 64 --centre --spp 1024 --integrator $m \
+    --reference ref.pfm --report 2.3-$m.csv --out 2.3-$m >/dev/null
+done
+"$bin/results" --tile 80 --spp-sweep 1,8,64,512 --depth-spp 256 --conv-spp 512 --ref-spp 2048 >/dev/null
+cp 4.2-samples.png 4.2-depth.png "$fig/"
+if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
+  pt_plot=("${bin%/build/bin}/build/plot-venv/bin/python" "${bin%/build/bin}/tools/plot_convergence.py")
+  "${pt_plot[@]}" 2.3-{naive,nee,mis}.csv -o "$fig/2.3-error.png" --labels "naive,nee,mis" \
+    --title "Cornell box with a glass ball: RMSE against a 2048-spp reference"
+  "${pt_plot[@]}" 4.2-{naive,nee,mis}.csv -o "$fig/4.2-error.png" --labels "naive,nee,mis" \
+    --title "Figure 4.3's scene: RMSE against spp and seconds"
+else
+  echo "make_figures: no matplotlib venv, skipping the 2.3 and 4.2 plots" >&2
+fi

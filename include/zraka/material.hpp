@@ -12,10 +12,14 @@
 // Directions: d is the incoming ray direction (towards the surface), wo = -d, wi points away.
 // The kinds follow the book: lambertian (cosine-weighted, erratum C1), fuzzy_metal (the thesis's
 // "diffuse", RTIOW's fuzzy metal; a mirror is fuzz 0), dielectric (glass, exact Fresnel and
-// total internal reflection), emitter (an area light) and phong (kd, ks, shininess: the local
-// model of book 1.9 for the Whitted tracer, and its energy-normalised BRDF for path tracing).
+// total internal reflection; an IOR below 1 is a hollow, e.g. an air bubble in glass at
+// 1/1.5), emitter (an area light, black) and phong (kd, ks, shininess: the local model of book
+// 1.9 for the Whitted tracer, and its energy-normalised BRDF for path tracing).
+// Any material may also glow: `radiance` is emitted from the front face, or from both faces
+// when `two_sided` is set (book 2.3's furnace: a Lambertian sphere that glows inwards).
 // A material is data, so a scene file can describe it field by field.
 #include <zraka/bxdf.hpp>
+#include <zraka/error.hpp>
 #include <zraka/hit.hpp>
 #include <zraka/optics.hpp>
 #include <zraka/rng.hpp>
@@ -24,6 +28,7 @@
 
 #include <cmath>
 #include <optional>
+#include <string>
 
 namespace zraka {
 
@@ -34,7 +39,8 @@ struct material {
   texture albedo = texture::solid(rgb(0.8f));  // lambertian, fuzzy_metal
   double fuzz = 0;                             // fuzzy_metal: 0 = mirror
   double ior = 1.5;                            // dielectric: index inside (outside is 1)
-  rgb radiance{0};                             // emitter
+  rgb radiance{0};                             // emitted (emitter, or any glowing surface)
+  bool two_sided = false;                      // emit from the back face too
   rgb kd{0.8f}, ks{0.2f};                      // phong
   double shininess = 32;                       // phong exponent p
 
@@ -52,16 +58,22 @@ struct material {
     return m;
   }
   static material mirror(rgb albedo = rgb(1)) { return fuzzy_metal(albedo, 0.0); }
+  // ior = n_inside / n_outside: 1.5 a glass ball in air, 1/1.5 an air bubble in glass.
   static material dielectric(double ior) {
+    if (!(ior > 0) || !std::isfinite(ior))
+      throw error("dielectric: the index of refraction must be positive, got " + std::to_string(ior));
     material m;
     m.kind = material_kind::dielectric;
     m.ior = ior;
     return m;
   }
-  static material emitter(rgb radiance) {
+  static material emitter(rgb radiance, bool two_sided = false) {
+    if (!is_finite(radiance) || radiance.x < 0 || radiance.y < 0 || radiance.z < 0)
+      throw error("emitter: radiance must be finite and not negative");
     material m;
     m.kind = material_kind::emitter;
     m.radiance = radiance;
+    m.two_sided = two_sided;
     m.albedo = texture::solid(rgb(0));
     return m;
   }
@@ -81,10 +93,11 @@ inline bool is_specular(const material& m) {
   return m.kind == material_kind::fuzzy_metal || m.kind == material_kind::dielectric;
 }
 
-// Emitters shine from their front face only (a quad light faces along its normal).
+// One-sided emitters shine from their front face only (a quad light faces along its normal).
 template <class T> rgb emitted(const material& m, const hit_t<T>& h) {
-  return m.kind == material_kind::emitter && h.front_face ? m.radiance : rgb(0);
+  return h.front_face || m.two_sided ? m.radiance : rgb(0);
 }
+inline bool emits(const material& m) { return m.radiance != rgb(0); }
 
 template <class T> struct scatter_t {
   vec3_t<T> direction;  // unit, away from the surface

@@ -10,6 +10,9 @@
 // Mirrors and glass cannot use light samples (a point light is never in their exact direction),
 // so emission seen through them is always counted. Paths longer than three bounces continue
 // with probability min(1, max throughput) (Russian roulette), which keeps the mean unchanged.
+//
+// integrators.hpp holds the full versions of book 2.3 (naive, nee, mis, selectable; glowing
+// surfaces and point lights sampled too); this compact one serves chapters 1.7 and 1.8.
 #include <zraka/material.hpp>
 #include <zraka/rng.hpp>
 #include <zraka/scene.hpp>

@@ -1,0 +1,246 @@
+// Chapter 2.3 — path tracing. Renders a scene physically with one of three integrators of the
+// rendering equation (integrators.hpp): `naive` (the thesis's algorithm: bounce until a light is
+// hit by chance), `nee` (next-event estimation: ask a light at every diffuse hit) and `mis`
+// (light and BSDF sampling combined by multiple importance sampling). The image is refined in
+// passes that double the samples per pixel; with --reference it prints, after every pass, the
+// error against that image and the time so far (error against run time), and --report writes the
+// same table as CSV for tools/plot_convergence.py. --time-budget stops the doubling early.
+//
+// Scenes: a scene file (scenes/README.md), the built-in Cornell boxes (cornell, cornell-glass,
+// cornell-spheres; scenes/cornell*.yaml hold the same) and `furnace`, a camera inside a glowing
+// Lambertian sphere whose radiance has a closed form, checked here.
+#include <zraka/cli.hpp>
+#include <zraka/convergence.hpp>
+#include <zraka/cornell.hpp>
+#include <zraka/error.hpp>
+#include <zraka/image_error.hpp>
+#include <zraka/image_io.hpp>
+#include <zraka/integrators.hpp>
+#include <zraka/pixel_sampling.hpp>
+#include <zraka/progressive.hpp>
+#include <zraka/scene_file.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <sstream>
+
+using namespace zraka;
+
+namespace {
+
+// The furnace: the camera inside a sphere of albedo a that glows with L_e on its inside. Every
+// path sees L_e at each bounce, weighted a^k, so L = L_e (1 + a + a^2 + ...) = L_e / (1 - a),
+// or L_e (1 - a^(D+1)) / (1 - a) when paths stop after D bounces.
+constexpr double furnace_albedo = 0.5, furnace_Le = 1.0;
+scene furnace_scene() {
+  scene sc;
+  material m = material::lambertian(rgb(float(furnace_albedo)));
+  m.radiance = rgb(float(furnace_Le));
+  m.two_sided = true;  // it glows towards the inside, where the camera is
+  sc.add(sphere{{0, 0, 0}, 1}, sc.add_material(m));
+  sc.camera.position = {0.2, -0.1, 0.3};
+  sc.camera.look_at = {0, 0, -1};
+  sc.settings.width = sc.settings.height = 64;
+  return sc;
+}
+
+scene load_scene(const std::string& name) {
+  if (name.size() > 5 && name.substr(name.size() - 5) == ".yaml") return load_scene_file(name).sc;
+  if (name == "cornell") return cornell_box<double>(cornell_variant::boxes);
+  if (name == "cornell-glass") return cornell_box<double>(cornell_variant::glass);
+  if (name == "cornell-spheres") return cornell_box<double>(cornell_variant::spheres);
+  if (name == "furnace") return furnace_scene();
+  throw error("unknown scene '" + name + "' (cornell, cornell-glass, cornell-spheres, furnace, or a .yaml file)");
+}
+
+// The scene as JSON for tools/mitsuba_reference.py: spheres, quads, materials, camera, size.
+std::string scene_json(const scene& sc, int width, int height, int depth) {
+  std::ostringstream o;
+  o.precision(17);
+  auto v3 = [&](const auto& v) { o << '[' << double(v.x) << ", " << double(v.y) << ", " << double(v.z) << ']'; };
+  const char* kinds[] = {"lambertian", "metal", "dielectric", "emitter", "phong"};
+  o << "{\n  \"width\": " << width << ", \"height\": " << height << ", \"max_depth\": " << depth
+    << ",\n  \"background\": ";
+  v3(sc.background);
+  o << ",\n  \"camera\": {\"position\": ";
+  v3(sc.camera.position);
+  o << ", \"look_at\": ";
+  v3(sc.camera.look_at);
+  o << ", \"up\": ";
+  v3(sc.camera.up);
+  o << ", \"vfov\": " << sc.camera.vfov_degrees << "},\n  \"materials\": [";
+  for (std::size_t i = 0; i < sc.materials.size(); ++i) {
+    const material& m = sc.materials[i];
+    o << (i ? ",\n    " : "\n    ") << "{\"type\": \"" << kinds[int(m.kind)] << "\", \"albedo\": ";
+    v3(m.albedo.a);
+    o << ", \"checker\": " << (m.albedo.type == texture::kind::checker ? "true" : "false")
+      << ", \"fuzz\": " << m.fuzz << ", \"ior\": " << m.ior << ", \"radiance\": ";
+    v3(m.radiance);
+    o << ", \"two_sided\": " << (m.two_sided ? "true" : "false") << "}";
+  }
+  o << "],\n  \"spheres\": [";
+  for (std::size_t i = 0; i < sc.spheres.size(); ++i) {
+    o << (i ? ",\n    " : "\n    ") << "{\"center\": ";
+    v3(sc.spheres[i].shape.center);
+    o << ", \"radius\": " << sc.spheres[i].shape.radius << ", \"material\": " << sc.spheres[i].material << "}";
+  }
+  o << "],\n  \"quads\": [";
+  for (std::size_t i = 0; i < sc.quads.size(); ++i) {
+    const auto& q = sc.quads[i].shape;
+    o << (i ? ",\n    " : "\n    ") << "{\"corner\": ";
+    v3(q.corner);
+    o << ", \"u\": ";
+    v3(q.u);
+    o << ", \"v\": ";
+    v3(q.v);
+    o << ", \"material\": " << sc.quads[i].material << "}";
+  }
+  o << "],\n  \"triangles\": [";  // loose triangles and every mesh's triangles, flat-shaded
+  bool first = true;
+  auto tri = [&](const auto& a, const auto& b, const auto& c, int mat) {
+    o << (first ? "\n    " : ",\n    ") << "{\"a\": ";
+    v3(a), o << ", \"b\": ", v3(b), o << ", \"c\": ", v3(c);
+    o << ", \"material\": " << mat << "}";
+    first = false;
+  };
+  for (const auto& t : sc.triangles) tri(t.shape.a, t.shape.b, t.shape.c, t.material);
+  for (const auto& m : sc.meshes)
+    for (std::size_t i = 0; i < m.shape.triangle_count(); ++i) {
+      const auto t = m.shape.triangle(i);
+      tri(t.a, t.b, t.c, m.material);
+    }
+  o << "],\n  \"point_lights\": [";
+  for (std::size_t i = 0; i < sc.point_lights.size(); ++i) {
+    o << (i ? ",\n    " : "\n    ") << "{\"position\": ";
+    v3(sc.point_lights[i].position);
+    o << ", \"intensity\": ";
+    v3(sc.point_lights[i].intensity);
+    o << "}";
+  }
+  o << "]\n}\n";
+  return o.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string scene_name = "cornell-glass", method = "mis", out = "pathtrace", pfm, reference, report, json;
+  std::optional<int> width, height, spp, depth;
+  int rr_depth = 3;
+  double budget = 0;
+  bool centre = false;
+  std::uint64_t seed = 1;
+  render_options ropt;
+  CLI::App app{"Chapter 2.3: path tracing with the naive, nee or mis integrator, error against run time"};
+  app.add_option("--scene", scene_name, "cornell, cornell-glass, cornell-spheres or furnace");
+  app.add_option("--integrator", method, "naive, nee or mis");
+  app.add_option("--width", width, "image width (default: the scene's)");
+  app.add_option("--height", height, "image height (default: the scene's)");
+  app.add_option("--spp", spp, "samples per pixel (default: the scene's)");
+  app.add_option("--depth", depth, "maximum bounces; 0 = only what the camera sees (default: the scene's)");
+  app.add_option("--rr-depth", rr_depth, "Russian roulette from this many bounces on");
+  app.add_option("--seed", seed, "random seed");
+  app.add_option("--threads", ropt.threads, "threads (0 = all cores)");
+  app.add_flag("--centre", centre, "sample every pixel at its centre (no anti-aliasing): the error against a "
+               "reference made the same way is then the light transport's alone");
+  app.add_option("--time-budget", budget, "stop doubling the samples after this many seconds (0 = no limit)");
+  app.add_option("--reference", reference, "reference image (.pfm): print the error after every pass");
+  app.add_option("--report", report, "write the error table as CSV (needs --reference)");
+  app.add_option("--out", out, "output PNG name without extension");
+  app.add_option("--pfm", pfm, "also write the linear image as PFM (e.g. to be a reference)");
+  app.add_option("--export", json, "write the scene as JSON for tools/mitsuba_reference.py and stop");
+  if (const auto done = parse_command_line(app, argc, argv)) return *done;
+
+  return guarded([&] {
+    const stopwatch clock;
+    scene sc = load_scene(scene_name);
+    const int W = width.value_or(sc.settings.width), H = height.value_or(sc.settings.height);
+    image::check_size(W, H);
+    sc.settings.width = W, sc.settings.height = H;
+    integrator_options io;
+    io.method = parse_integrator(method);
+    io.max_depth = depth.value_or(sc.settings.max_depth);
+    io.rr_depth = rr_depth;
+    if (io.max_depth < 0 || io.max_depth > 1000)
+      throw error("--depth must be in 0..1000, got " + std::to_string(io.max_depth));
+    if (!report.empty() && reference.empty()) throw error("--report needs --reference");
+    if (!json.empty()) {
+      if (!sc.planes.empty()) throw error("--export: Mitsuba has no infinite plane; use a large quad");
+      write_file_atomically(json, scene_json(sc, W, H, io.max_depth));
+      std::printf("wrote %s (%zu spheres, %zu quads, %zu materials)\n", json.c_str(), sc.spheres.size(),
+                  sc.quads.size(), sc.materials.size());
+      return 0;
+    }
+    std::optional<image> ref;
+    if (!reference.empty()) {
+      ref = read_pfm(reference);
+      check_same_size(image(W, H), *ref);
+    }
+
+    // [listing render]
+    const path_tracer tracer(sc, io);
+    const auto cam = sc.prepared_camera();
+    auto sample = [&](sample_context& c) {
+      const vec2 o = centre ? vec2(0.5) : pixel_sample(pixel_pattern::uniform, c.sample, c.spp, c.random);
+      return tracer(cam.generate((c.x + o.x) / W, (c.y + o.y) / H), c.random, c.rays);
+    };
+    progressive_options po;
+    po.max_spp = spp.value_or(sc.settings.spp);
+    po.time_budget = budget;
+    po.seed = seed;
+    po.render = ropt;
+    convergence_log log("error of " + scene_name + " (" + name(io.method) + ") against " + reference,
+                        {"rmse", "relmse"}, "rmse", "spp");
+    progressive_totals tot;
+    const image img = render_progressive(W, H, po, sample, [&](const image& mean, const progressive_totals& t) {
+      if (ref) log.add(std::uint64_t(t.spp), t.seconds, {rmse(mean, *ref), relmse(mean, *ref)});
+    }, &tot);
+    // [end]
+
+    std::printf("scene %s, %dx%d; %s\n", scene_name.c_str(), W, H, describe_built(sc).c_str());
+    if (io.method == integrator::naive && !sc.point_lights.empty())
+      std::printf("note: naive path tracing never finds a point light (a ray cannot hit a point)\n");
+    std::printf("integrator %s%s, at most %d bounces, Russian roulette from bounce %d\n", name(io.method),
+                io.method == integrator::mis ? " (power heuristic)" : "", io.max_depth, io.rr_depth);
+    if (ref) {
+      std::printf("%s", log.table().c_str());
+      std::printf("%s\n", log.slope_line().c_str());
+      if (!report.empty()) {
+        log.write_csv(report);
+        std::printf("wrote %s\n", report.c_str());
+      }
+    }
+    if (tot.out_of_time)
+      std::printf("time budget %.3g s: stopped at %d spp\n", budget, tot.spp);
+    const vec3 mean = channel_mean(img);
+    std::printf("mean radiance: %.5f %.5f %.5f\n", mean.x, mean.y, mean.z);
+    if (scene_name == "furnace") {
+      const double a = furnace_albedo, truncated = furnace_Le * (1 - std::pow(a, io.max_depth + 1)) / (1 - a);
+      std::printf("furnace: expected Le/(1-a) = %.5f, with %d bounces Le(1-a^%d)/(1-a) = %.5f; "
+                  "measured/expected - 1 = %+.2e\n",
+                  furnace_Le / (1 - a), io.max_depth, io.max_depth + 1, truncated, mean.x / truncated - 1);
+      // A loose bound (2%) that a few thousand samples meet many times over: a gross check only;
+      // tests/test_integrators.cpp holds the statistical one.
+      if (tot.stats.samples >= 4096)
+        std::printf("furnace check: %s (|measured/expected - 1| < 2%%)\n",
+                    std::abs(mean.x / truncated - 1) < 0.02 ? "ok" : "FAILED");
+    }
+    write_png(img, out + ".png");
+    std::printf("wrote %s.png\n", out.c_str());
+    if (!pfm.empty()) {
+      write_pfm(img, pfm);
+      std::printf("wrote %s\n", pfm.c_str());
+    }
+    const double secs = std::max(tot.seconds, 1e-9);
+    std::printf("summary: %s %s %dx%d, %d spp in %.2f s on %d thread%s: %.3f M samples/s, %.3f M rays/s, "
+                "%.2f rays/sample, %llu NaN/inf samples; total %.2f s\n",
+                scene_name.c_str(), name(io.method), W, H, tot.spp, tot.seconds, tot.stats.threads,
+                tot.stats.threads == 1 ? "" : "s", double(tot.stats.samples) / secs * 1e-6,
+                double(tot.stats.rays) / secs * 1e-6, double(tot.stats.rays) / double(std::max<std::uint64_t>(tot.stats.samples, 1)),
+                static_cast<unsigned long long>(tot.stats.nonfinite), clock.seconds());
+    return 0;
+  });
+}

@@ -1,0 +1,108 @@
+#pragma once
+// Progressive rendering (book 2.3, 4.2): the image is refined in passes that double the samples
+// per pixel (1, 2, 4, ... spp in total), and after each pass the caller sees the current mean,
+// e.g. to measure its error against a reference and write one row of an error-against-time
+// table. A wall-clock budget stops the doubling early.
+//
+// Sample s of pixel p always uses the stream rng(seed, p, s), whichever pass computes it, so the
+// image after N spp holds the same samples as a single render of N spp (equal up to float
+// rounding of the running sums), for any number of threads.
+#include <zraka/convergence.hpp>
+#include <zraka/error.hpp>
+#include <zraka/image.hpp>
+#include <zraka/render.hpp>
+#include <zraka/rng.hpp>
+#include <zraka/stopwatch.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+namespace zraka {
+
+struct progressive_options {
+  int max_spp = 1024;        // the last pass ends here (need not be a power of two)
+  double time_budget = 0;    // seconds; 0 = none. A pass that would end past it is not started
+  std::uint64_t seed = 1;
+  render_options render;
+};
+
+struct progressive_totals {
+  int spp = 0;               // samples per pixel so far
+  double seconds = 0;        // wall-clock time of all passes so far
+  render_stats stats;        // summed over the passes (samples, rays, NaN/inf)
+  bool out_of_time = false;  // the budget stopped it before max_spp
+};
+
+// [listing progressive]
+// fn(sample_context&) -> rgb as for render(); on_pass(const image& mean, const progressive_totals&)
+// runs after every pass; if it returns a bool, false stops the doubling there.
+template <class SampleFn, class PassFn>
+image render_progressive(int width, int height, const progressive_options& opt, SampleFn&& fn,
+                         PassFn&& on_pass, progressive_totals* totals_out = nullptr) {
+  if (opt.max_spp < 1) throw error("--spp must be at least 1, got " + std::to_string(opt.max_spp));
+  if (!(opt.time_budget >= 0)) throw error("--time-budget must not be negative");
+  image mean(width, height), pass(width, height);
+  std::vector<vec3> sum(mean.pixels.size(), vec3(0));
+  progressive_totals tot;
+  const stopwatch clock;
+  while (tot.spp < opt.max_spp) {
+    const int n = std::min(std::max(tot.spp, 1), opt.max_spp - tot.spp);  // doubles the total
+    // The next pass costs about as much as all before it: skip it if that would overrun.
+    if (opt.time_budget > 0 && tot.spp > 0 && clock.seconds() * (1.0 + double(n) / tot.spp) > opt.time_budget) {
+      tot.out_of_time = true;
+      break;
+    }
+    const int base = tot.spp;
+    const render_stats s = render(pass, n, opt.seed, [&](sample_context& c) {
+      const auto pixel = std::uint32_t(c.y) * std::uint32_t(width) + std::uint32_t(c.x);
+      rng g(opt.seed, pixel, std::uint32_t(base + c.sample));  // the sample's own stream
+      sample_context mine{c.x, c.y, base + c.sample, opt.max_spp, g, c.rays};
+      return fn(mine);
+    }, opt.render);
+    tot.spp += n;
+    tot.stats.samples += s.samples, tot.stats.rays += s.rays, tot.stats.nonfinite += s.nonfinite;
+    tot.stats.threads = s.threads;
+    for (std::size_t i = 0; i < sum.size(); ++i) {
+      sum[i] += vec3(pass.pixels[i]) * double(n);
+      mean.pixels[i] = rgb(sum[i] / double(tot.spp));
+    }
+    tot.seconds = tot.stats.seconds = clock.seconds();
+    const image& m = mean;
+    const progressive_totals& t = tot;
+    if constexpr (std::is_same_v<decltype(on_pass(m, t)), bool>) {
+      if (!on_pass(m, t)) break;  // the caller has seen enough
+    } else {
+      on_pass(m, t);
+    }
+  }
+  if (totals_out) *totals_out = tot;
+  return mean;
+}
+// [end]
+
+// [listing seconds-to-reach]
+// When did a progressive run's error (column `column`) first fall to `target`? Between the two
+// rows that bracket it, log(error) is interpolated linearly in log(seconds) (a power law, as
+// error ~ t^(-1/2) is). NaN if it never got there.
+inline double seconds_to_reach(const convergence_log& log, double target, std::string_view column = "rmse") {
+  const std::size_t c = log.column_index(column);
+  const auto& rows = log.rows();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const double e = rows[i].values[c], t = rows[i].seconds;
+    if (!(e <= target)) continue;
+    if (i == 0) return t;  // already below after the first pass
+    const double e0 = rows[i - 1].values[c], t0 = rows[i - 1].seconds;
+    if (!(e0 > e) || !(t > t0) || !(t0 > 0)) return t;
+    const double f = std::log(e0 / target) / std::log(e0 / e);  // in [0, 1]
+    return t0 * std::pow(t / t0, f);
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+// [end]
+
+}  // namespace zraka

@@ -1,0 +1,187 @@
+#pragma once
+// The host side of the real-time path tracer (book 4.3): a packed scene (gpu_scene.hpp) on an
+// OpenCL device, kernels/pathtrace.cl built for that scene's features, and progressive
+// accumulation: every launch adds samples to a per-pixel sum on the device and writes the
+// running mean as sRGB bytes, ready for glTexSubImage2D (PoCL has no CL/GL sharing, so the
+// bytes come back to the host; 4 bytes a pixel instead of 16 for the float sums).
+//
+//   zraka::gpu_renderer r(ctx, packed, width, height, seed);
+//   r.launch(1); r.read_display(bytes);  // one frame, one sample per pixel
+//   r.reset();                           // the camera moved: start the sums again
+// The chapter's in-code scenes are here too (realtime_scene()), so that the chapter, its test
+// and its benchmark render the same ones; they need no OpenCL.
+// Link with OpenCL::OpenCL (a test's first line: // links: OpenCL).
+#include <zraka/cl.hpp>
+#include <zraka/cornell.hpp>
+#include <zraka/error.hpp>
+#include <zraka/gpu_scene.hpp>
+#include <zraka/image.hpp>
+#include <zraka/scene.hpp>
+#include <zraka/stopwatch.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace zraka {
+
+// [listing spheres-scene]
+// Diffuse spheres on a checkered ground sphere under a blue sky, lit by a small glowing sphere:
+// only spheres and Lambertian materials, the scene the specialised kernel is fastest on.
+inline scene spheres_scene() {
+  scene sc;
+  const int ground = sc.add_material(material::lambertian(texture::checker(rgb(0.75f), rgb(0.3f), 0.5)));
+  const int red = sc.add_material(material::lambertian(rgb(0.7f, 0.15f, 0.1f)));
+  const int blue = sc.add_material(material::lambertian(rgb(0.15f, 0.3f, 0.7f)));
+  const int white = sc.add_material(material::lambertian(rgb(0.8f)));
+  const int lamp = sc.add_material(material::emitter(rgb(12.0f, 10.0f, 7.0f)));
+  sc.add(sphere{{0, -1000, 0}, 1000}, ground);
+  sc.add(sphere{{-1.1, 0.5, 0}, 0.5}, red);
+  sc.add(sphere{{0, 0.7, -0.6}, 0.7}, white);
+  sc.add(sphere{{1.1, 0.45, 0.3}, 0.45}, blue);
+  sc.add(sphere{{1.5, 2.6, 1.5}, 0.5}, lamp);
+  sc.background = rgb(0.35f, 0.45f, 0.6f);
+  sc.camera.position = {0, 1.4, 4.2};
+  sc.camera.look_at = {0, 0.5, 0};
+  sc.camera.vfov_degrees = 40;
+  return sc;
+}
+// [end]
+
+// The chapter's scenes by name: spheres, or a Cornell box variant (cornell = the glass one).
+inline scene realtime_scene(const std::string& name) {
+  if (name == "spheres") return spheres_scene();
+  if (name == "cornell") return cornell_box<double>(cornell_variant::glass);
+  if (name.rfind("cornell-", 0) == 0) return cornell_box<double>(parse_cornell_variant(name.substr(8)));
+  throw error("unknown scene '" + name + "' (spheres, cornell, cornell-boxes, cornell-glass, "
+              "cornell-spheres, or a .yaml scene file)");
+}
+}  // namespace zraka
+
+#if __has_include(<CL/cl.h>)
+namespace zraka {
+
+class gpu_renderer {
+ public:
+  // all_features: compile every code path instead of the scene's (the benchmark's comparison).
+  // kernel_file: another kernel with the same interface (or a broken one, to see the build log).
+  gpu_renderer(const cl::context& c, const gpu_scene& s, int width, int height, std::uint64_t seed,
+               bool all_features = false,
+               const std::filesystem::path& kernel_file = "kernels/pathtrace.cl")
+      : ctx_(c), width_(width), height_(height), seed_(seed), scene_(s) {
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+      throw error("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                  " is out of range (1..16384)");
+    options_ = build_options(s.features, all_features);
+    stopwatch clock;
+    program_ = cl::build_program_files(c, {"kernels/rng.cl", kernel_file}, options_);
+    kernel_ = cl::make_kernel(program_, "render");
+    build_seconds_ = clock.seconds();
+    spheres_ = upload(s.spheres);
+    quads_ = upload(s.quads);
+    planes_ = upload(s.planes);
+    tris_ = upload(s.triangles);
+    nodes_ = upload(s.nodes);
+    materials_ = upload(s.materials);
+    lights_ = upload(s.lights);
+    camera_ = c.make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_camera), &s.camera);
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    accum_ = c.make_buffer(CL_MEM_READ_WRITE, pixels * 16);
+    display_ = c.make_buffer(CL_MEM_WRITE_ONLY, pixels * 4);
+  }
+
+  const std::string& options() const { return options_; }
+  double build_seconds() const { return build_seconds_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  std::uint32_t samples() const { return samples_; }  // per pixel, summed so far
+
+  // [listing realtime-launch]
+  // Adds n samples per pixel (enqueued; read_* waits for it).
+  void launch(std::uint32_t n) {
+    const gpu_scene& s = scene_;
+    const cl_float4 bg = {{s.background.x, s.background.y, s.background.z, 0.0f}};
+    cl::set_args(kernel_, spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, camera_,
+                 accum_, display_, cl_int(s.spheres.size()), cl_int(s.quads.size()),
+                 cl_int(s.planes.size()), cl_int(s.lights.size()), cl_int(s.nodes.size()),
+                 cl_uint(width_), cl_uint(height_), cl_uint(samples_), cl_uint(n),
+                 cl_ulong(seed_), bg);
+    cl::run_2d(ctx_, kernel_, std::size_t(width_), std::size_t(height_));
+    samples_ += n;
+  }
+  // The camera moved (or anything else changed): the next launch starts the sums afresh.
+  void set_camera(const gpu_camera& cam) {
+    scene_.camera = cam;
+    ctx_.write(camera_, sizeof cam, &cam);
+    reset();
+  }
+  void reset() { samples_ = 0; }
+  // [end]
+
+  void finish() const { ctx_.finish(); }
+
+  // The running mean as sRGB bytes, RGBA, bottom row first (a texture's order).
+  void read_display(std::vector<std::uint8_t>& rgba) const {
+    rgba.resize(std::size_t(width_) * std::size_t(height_) * 4);
+    ctx_.read(display_, rgba.size(), rgba.data());
+  }
+  // The same without waiting: the copy is queued behind the launches, and wait_display() blocks
+  // until it is done. The viewer draws frame k while the device renders frame k + 1.
+  void read_display_async(std::vector<std::uint8_t>& rgba) {
+    rgba.resize(std::size_t(width_) * std::size_t(height_) * 4);
+    cl_event e = nullptr;
+    cl::check(clEnqueueReadBuffer(ctx_.queue.get(), display_.get(), CL_FALSE, 0, rgba.size(),
+                                  rgba.data(), 0, nullptr, &e),
+              "clEnqueueReadBuffer");
+    pending_ = event_handle(e);
+    cl::check(clFlush(ctx_.queue.get()), "clFlush");
+  }
+  void wait_display() {
+    if (!pending_) return;
+    const cl_event e = pending_.get();
+    cl::check(clWaitForEvents(1, &e), "clWaitForEvents");
+    pending_.reset();
+  }
+
+  // The running mean in linear floats, top row first (zraka::image's order).
+  image read_image() const {
+    std::vector<float> sums(std::size_t(width_) * std::size_t(height_) * 4);
+    ctx_.read(accum_, sums.size() * sizeof(float), sums.data());
+    image img(width_, height_);
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x) {
+        const float* p = &sums[4 * (std::size_t(y) * std::size_t(width_) + std::size_t(x))];
+        const float n = p[3] > 0 ? p[3] : 1.0f;
+        img.at(x, y) = rgb(p[0] / n, p[1] / n, p[2] / n);
+      }
+    return img;
+  }
+
+ private:
+  // An empty array still needs a buffer to pass (OpenCL has no zero-size buffers): one zeroed
+  // element, which the kernel never reads because its count is 0.
+  template <class V> cl::buffer upload(const std::vector<V>& v) const {
+    if (v.empty()) {
+      const V zero{};
+      return ctx_.make_buffer(CL_MEM_READ_ONLY, sizeof(V), &zero);
+    }
+    return ctx_.make_buffer(CL_MEM_READ_ONLY, v.size() * sizeof(V), v.data());
+  }
+
+  const cl::context& ctx_;
+  int width_, height_;
+  std::uint64_t seed_;
+  gpu_scene scene_;
+  std::string options_;
+  double build_seconds_ = 0;
+  cl::program_handle program_;
+  cl::kernel_handle kernel_;
+  cl::buffer spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, camera_, accum_, display_;
+  std::uint32_t samples_ = 0;
+  using event_handle = cl::handle<cl_event, clReleaseEvent>;
+  event_handle pending_;
+};
+
+}  // namespace zraka
+#endif

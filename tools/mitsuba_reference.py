@@ -1,0 +1,190 @@
+#!/usr/bin/env python3
+"""Renders a zraka scene with Mitsuba 3 (scalar_rgb), as an independent reference (book 4.2).
+
+    bash tools/mitsuba-setup.sh                          # once: build/mitsuba-venv with mitsuba
+    build/bin/pathtrace --scene cornell-glass --export cg.json
+    build/mitsuba-venv/bin/python tools/mitsuba_reference.py cg.json --spp 1024 -o cg-mitsuba.pfm \
+        [--compare cg-zraka.pfm]
+
+The scene comes as the JSON that `pathtrace --export` writes: spheres, quads (boxes are six
+quads), triangles (meshes are flattened into them), point lights, materials, a pinhole camera,
+the image size and the maximum number of bounces. What maps one to one:
+  lambertian -> diffuse;  metal with fuzz 0 -> conductor 'none' scaled by the albedo (a mirror);
+  dielectric -> dielectric (int_ior = ior, ext_ior = 1);  emitter -> black diffuse + area
+  emitter (one-sided, like zraka's default);  point light -> point;  background -> constant.
+What has no exact Mitsuba counterpart is refused with a message: checker textures, fuzzy metal
+(zraka's is RTIOW's fuzzed mirror, not a microfacet model), phong, two-sided emitters, planes.
+Mitsuba's `path` integrator counts max_depth in path segments, so it gets zraka's bounces + 1;
+the film uses a box filter, as zraka's pixel sampling does.
+
+--compare prints RMSE, relative MSE and the mean of each channel of both images.
+Not part of the tests: Mitsuba is a few hundred MB from PyPI.
+"""
+import argparse
+import json
+import os
+import sys
+import tempfile
+import time
+
+
+def write_pfm(path, arr):
+    import numpy as np
+
+    h, w, _ = arr.shape
+    tmp = path + ".tmp"
+    with open(tmp, "wb") as f:
+        f.write(f"PF\n{w} {h}\n-1.0\n".encode())
+        f.write(np.ascontiguousarray(arr[::-1], dtype="<f4").tobytes())  # rows bottom to top
+    os.replace(tmp, path)
+
+
+def read_pfm(path):
+    import numpy as np
+
+    with open(path, "rb") as f:
+        if f.readline().strip() != b"PF":
+            sys.exit(f"{path}: not a colour PFM file")
+        w, h = map(int, f.readline().split())
+        if float(f.readline()) >= 0:
+            sys.exit(f"{path}: big-endian PFM is not supported")
+        data = np.frombuffer(f.read(w * h * 12), dtype="<f4")
+    if data.size != w * h * 3:
+        sys.exit(f"{path}: truncated PFM")
+    return data.reshape(h, w, 3)[::-1].astype(np.float64)
+
+
+def rgb(v):
+    return {"type": "rgb", "value": [float(x) for x in v]}
+
+
+def bsdf_of(m, index):
+    """The Mitsuba BSDF for zraka material `m`, or an error naming what cannot be converted."""
+    kind = m["type"]
+    if kind in ("lambertian", "emitter"):
+        if m["checker"]:
+            raise ValueError(f"material {index}: checker textures have no exact Mitsuba counterpart")
+        return {"type": "diffuse", "reflectance": rgb([0, 0, 0] if kind == "emitter" else m["albedo"])}
+    if kind == "metal":
+        if m["fuzz"] != 0:
+            raise ValueError(f"material {index}: fuzzy metal (fuzz {m['fuzz']}) has no Mitsuba counterpart")
+        return {"type": "conductor", "material": "none", "specular_reflectance": rgb(m["albedo"])}
+    if kind == "dielectric":
+        return {"type": "dielectric", "int_ior": float(m["ior"]), "ext_ior": 1.0}
+    raise ValueError(f"material {index}: type {kind} has no exact Mitsuba counterpart")
+
+
+def emitter_of(m, index):
+    if not any(m["radiance"]):
+        return None
+    if m["two_sided"]:
+        raise ValueError(f"material {index}: Mitsuba's area emitters are one-sided")
+    return {"type": "area", "radiance": rgb(m["radiance"])}
+
+
+def scene_dict(js, mi, workdir):
+    T = mi.ScalarTransform4f
+    cam = js["camera"]
+    d = {
+        "type": "scene",
+        "integrator": {"type": "path", "max_depth": int(js["max_depth"]) + 1},
+        "sensor": {
+            "type": "perspective",
+            "fov": float(cam["vfov"]),
+            "fov_axis": "y",
+            "to_world": T().look_at(origin=cam["position"], target=cam["look_at"], up=cam["up"]),
+            "film": {"type": "hdrfilm", "width": int(js["width"]), "height": int(js["height"]),
+                     "rfilter": {"type": "box"}, "pixel_format": "rgb"},
+            "sampler": {"type": "independent"},
+        },
+    }
+    mats = js["materials"]
+    bsdfs = [bsdf_of(m, i) for i, m in enumerate(mats)]
+    emitters = [emitter_of(m, i) for i, m in enumerate(mats)]
+
+    def shape(s, mat, name):
+        s["bsdf"] = bsdfs[mat]
+        if emitters[mat]:
+            s["emitter"] = emitters[mat]
+        d[name] = s
+
+    for i, s in enumerate(js["spheres"]):
+        shape({"type": "sphere", "center": s["center"], "radius": float(s["radius"])}, s["material"], f"sphere{i}")
+    for i, q in enumerate(js["quads"]):
+        # Mitsuba's rectangle is [-1,1]^2 at z = 0 facing +z: map it onto corner + a u + b v.
+        u, v, c = q["u"], q["v"], q["corner"]
+        n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+        ln = sum(x * x for x in n) ** 0.5
+        n = [x / ln for x in n]
+        centre = [c[k] + 0.5 * u[k] + 0.5 * v[k] for k in range(3)]
+        m = [[0.5 * u[r], 0.5 * v[r], n[r], centre[r]] for r in range(3)] + [[0, 0, 0, 1]]
+        shape({"type": "rectangle", "to_world": T(m)}, q["material"], f"quad{i}")
+    by_material = {}
+    for t in js.get("triangles", []):
+        by_material.setdefault(t["material"], []).append(t)
+    for mat, tris in by_material.items():  # one flat-shaded OBJ per material
+        path = os.path.join(workdir, f"mesh{mat}.obj")
+        with open(path, "w", encoding="utf-8") as f:
+            for t in tris:
+                for p in (t["a"], t["b"], t["c"]):
+                    f.write("v %.17g %.17g %.17g\n" % tuple(p))
+            for k in range(len(tris)):
+                f.write(f"f {3 * k + 1} {3 * k + 2} {3 * k + 3}\n")
+        shape({"type": "obj", "filename": path, "face_normals": True}, mat, f"mesh{mat}")
+    for i, p in enumerate(js.get("point_lights", [])):
+        d[f"point{i}"] = {"type": "point", "position": p["position"], "intensity": rgb(p["intensity"])}
+    if any(js["background"]):
+        d["sky"] = {"type": "constant", "radiance": rgb(js["background"])}
+    return d
+
+
+def compare(ours_path, theirs):
+    import numpy as np
+
+    ours = read_pfm(ours_path)
+    if ours.shape != theirs.shape:
+        sys.exit(f"{ours_path} is {ours.shape[1]}x{ours.shape[0]}, Mitsuba's {theirs.shape[1]}x{theirs.shape[0]}")
+    diff = ours - theirs
+    rmse = float(np.sqrt(np.mean(diff * diff)))
+    relmse = float(np.mean(diff * diff / (theirs * theirs + 0.01)))
+    mo, mt = ours.reshape(-1, 3).mean(0), theirs.reshape(-1, 3).mean(0)
+    print(f"RMSE {rmse:.5f}, relMSE {relmse:.5f}")
+    print("mean R G B: zraka %.5f %.5f %.5f, Mitsuba %.5f %.5f %.5f" % (*mo, *mt))
+    print("zraka/Mitsuba - 1 per channel: %+.4f %+.4f %+.4f" % tuple(mo / mt - 1))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("scene", help="JSON written by `pathtrace --export`")
+    ap.add_argument("-o", "--out", required=True, help="PFM file to write")
+    ap.add_argument("--spp", type=int, default=256, help="samples per pixel (default 256)")
+    ap.add_argument("--seed", type=int, default=0, help="Mitsuba's sampler seed")
+    ap.add_argument("--compare", help="a zraka PFM of the same scene: print RMSE and channel means")
+    a = ap.parse_args()
+    if a.spp < 1:
+        sys.exit("error: --spp must be at least 1")
+    with open(a.scene, encoding="utf-8") as f:
+        js = json.load(f)
+
+    import mitsuba as mi
+    import numpy as np
+
+    mi.set_variant("scalar_rgb")
+    with tempfile.TemporaryDirectory() as work:
+        try:
+            d = scene_dict(js, mi, work)
+        except ValueError as e:
+            sys.exit(f"error: {e}")
+        scene = mi.load_dict(d)
+        start = time.time()
+        img = np.array(mi.render(scene, spp=a.spp, seed=a.seed), dtype=np.float64)[:, :, :3]
+        secs = time.time() - start
+    write_pfm(a.out, img)
+    print(f"Mitsuba {mi.__version__} scalar_rgb: {js['width']}x{js['height']}, {a.spp} spp, "
+          f"max_depth {js['max_depth'] + 1} (zraka: {js['max_depth']} bounces) in {secs:.1f} s; wrote {a.out}")
+    if a.compare:
+        compare(a.compare, img)
+
+
+if __name__ == "__main__":
+    main()
