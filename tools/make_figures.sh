@@ -62,6 +62,7 @@ fi
 # --- assignments (book/assignments): the target images, made by the reference solutions
 "$bin/assignment-01-cylinder-render" --out "${bin%/build/bin}/book/assignments/01-cylinder/target.png" >/dev/null
 "$bin/assignment-02-ggx-render" --out "${bin%/build/bin}/book/assignments/02-ggx/target.png" >/dev/null
+"$bin/assignment-03-material-render" --out "${bin%/build/bin}/book/assignments/03-material/target.png" >/dev/null
 # --- 2.1, 2.2, 4.1
 "$bin/shaders" --out 2.1-shaders.png >/dev/null && cp 2.1-shaders.png "$fig/"
 "$bin/shaders" --shader normal --out 2.1-normal.png >/dev/null && cp 2.1-normal.png "$fig/"

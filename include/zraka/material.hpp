@@ -17,8 +17,13 @@
 // 1.9 for the Whitted tracer, and its energy-normalised BRDF for path tracing).
 // Any material may also glow: `radiance` is emitted from the front face, or from both faces
 // when `two_sided` is set (book 2.3's furnace: a Lambertian sphere that glows inwards).
-// A material is data, so a scene file can describe it field by field.
+// A material is data, so a scene file can describe it field by field; the one exception is
+// `bsdf`, a user-defined BSDF (custom_bsdf.hpp) that, when set, replaces the kind's reflection in
+// scatter(), brdf_cos() and scatter_pdf() (material::custom). Its kind stays lambertian, so a
+// renderer that does not know custom BSDFs (whitted.hpp, gpu_scene.hpp, scene files) sees a
+// diffuse surface; the path tracers use the BSDF itself.
 #include <zraka/bxdf.hpp>
+#include <zraka/custom_bsdf.hpp>
 #include <zraka/error.hpp>
 #include <zraka/hit.hpp>
 #include <zraka/optics.hpp>
@@ -27,6 +32,7 @@
 #include <zraka/texture.hpp>
 
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -43,6 +49,7 @@ struct material {
   bool two_sided = false;                      // emit from the back face too
   rgb kd{0.8f}, ks{0.2f};                      // phong
   double shininess = 32;                       // phong exponent p
+  std::shared_ptr<const custom_bsdf> bsdf;     // set: a user-defined BSDF (custom_bsdf.hpp)
 
   static material lambertian(rgb albedo) { return lambertian(texture::solid(albedo)); }
   static material lambertian(texture albedo) {
@@ -77,6 +84,12 @@ struct material {
     m.albedo = texture::solid(rgb(0));
     return m;
   }
+  static material custom(std::shared_ptr<const custom_bsdf> f) {
+    if (!f) throw error("custom: the BSDF must not be null");
+    material m;
+    m.bsdf = std::move(f);
+    return m;
+  }
   static material phong(rgb kd, rgb ks, double shininess) {
     material m;
     m.kind = material_kind::phong;
@@ -90,6 +103,7 @@ struct material {
 // Mirror, fuzzy metal and glass scatter into a direction (or a narrow lobe) that light sampling
 // cannot hit by chance: renderers skip next-event estimation there and follow the scattered ray.
 inline bool is_specular(const material& m) {
+  if (m.bsdf) return false;  // a custom BSDF has a density (custom_bsdf.hpp)
   return m.kind == material_kind::fuzzy_metal || m.kind == material_kind::dielectric;
 }
 
@@ -125,6 +139,10 @@ template <class T> lambert_phong_brdf_t<T> brdf_at(const material& m, const hit_
 // [listing brdf-cos]
 template <class T>
 rgb brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const vec3_t<T>& wi) {
+  if (m.bsdf) {
+    const vec3_t<T> n = h.facing_normal();
+    return rgb(vec3_t<T>(m.bsdf->eval(vec3(wo), vec3(wi), vec3(n))) * std::max(T(0), glm::dot(n, wi)));
+  }
   if (m.kind != material_kind::lambertian && m.kind != material_kind::phong) return rgb(0);
   const vec3_t<T> n = h.facing_normal();
   return rgb(brdf_at(m, h).eval(wi, wo, n) * std::max(T(0), glm::dot(n, wi)));
@@ -133,6 +151,7 @@ rgb brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const ve
 
 template <class T>
 T scatter_pdf(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const vec3_t<T>& wi) {
+  if (m.bsdf) return T(m.bsdf->pdf(vec3(wo), vec3(wi), vec3(h.facing_normal())));
   if (m.kind != material_kind::lambertian && m.kind != material_kind::phong) return T(0);
   return brdf_at(m, h).pdf(wi, wo, h.facing_normal());
 }
@@ -141,6 +160,11 @@ T scatter_pdf(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const v
 template <class T>
 std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const hit_t<T>& h, rng& g) {
   const vec3_t<T> n = h.facing_normal();  // on the side the ray came from
+  if (m.bsdf) {  // user-defined (custom_bsdf.hpp); the same two uniform numbers as Lambert
+    const auto sm = m.bsdf->sample(vec3(-d), vec3(n), g.uniform2());
+    if (!sm || !(sm->pdf > 0)) return std::nullopt;  // lost below the surface: absorbed
+    return scatter_t<T>{vec3_t<T>(sm->wi), rgb(sm->weight), T(sm->pdf), false};
+  }
   switch (m.kind) {
     case material_kind::lambertian: {  // cosine-weighted: f cos / pdf = albedo exactly
       const lambert_brdf_t<T> f{vec3_t<T>(evaluate(m.albedo, h.p, n))};

@@ -1,0 +1,45 @@
+#pragma once
+// Assignment 03: the Oren–Nayar rough diffuse BRDF (its "qualitative" form) as a
+// zraka::custom_bsdf. Fill in eval, pdf and sample; see README.md.
+//
+//   f(wo, wi) = rho/pi (A + B max(0, cos(phi_i - phi_o)) sin(alpha) tan(beta))
+//   A = 1 - sigma^2 / (2 (sigma^2 + 0.33)),  B = 0.45 sigma^2 / (sigma^2 + 0.09)
+//   alpha = max(theta_i, theta_o),  beta = min(theta_i, theta_o)
+// sigma is the standard deviation of the facet slopes in radians; sigma = 0 is Lambert.
+#include <zraka/custom_bsdf.hpp>
+#include <zraka/onb.hpp>
+#include <zraka/sampling.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace course {
+
+struct oren_nayar final : zraka::custom_bsdf {
+  zraka::vec3 rho{0.5};  // reflectance of the facets (the albedo at sigma = 0)
+  double sigma = 0;      // roughness, radians
+
+  oren_nayar(zraka::vec3 rho_, double sigma_) : rho(rho_), sigma(sigma_) {}
+
+  // f(wo, wi) per channel, in 1/sr; zero unless both wo and wi are above the surface.
+  zraka::vec3 eval(const zraka::vec3& wo, const zraka::vec3& wi, const zraka::vec3& n) const override {
+    (void)wo, (void)wi, (void)n;
+    return zraka::vec3(0);  // TODO
+  }
+
+  // The density sample() draws wi with, per steradian.
+  double pdf(const zraka::vec3& wo, const zraka::vec3& wi, const zraka::vec3& n) const override {
+    (void)wo, (void)wi, (void)n;
+    return 0;  // TODO
+  }
+
+  // A direction wi, its weight f cos / pdf and its pdf; none when wo is below the surface.
+  std::optional<zraka::custom_sample> sample(const zraka::vec3& wo, const zraka::vec3& n,
+                                             const zraka::vec2& u) const override {
+    (void)wo, (void)u;
+    return zraka::custom_sample{n, zraka::vec3(0), 0};  // TODO
+  }
+};
+
+}  // namespace course
