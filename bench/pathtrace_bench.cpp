@@ -12,7 +12,7 @@
 #include <zraka/error.hpp>
 #include <zraka/image_error.hpp>
 #include <zraka/image_io.hpp>
-#include <zraka/integrators.hpp>
+#include <zraka/path.hpp>
 #include <zraka/progressive.hpp>
 
 #include <CLI/CLI.hpp>
@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
     const auto cam = sc.prepared_camera();
     const integrator methods[] = {integrator::naive, integrator::nee, integrator::mis};
     auto tracer_for = [&](integrator m) {
-      integrator_options o;
+      path_options o;
       o.method = m;
       o.max_depth = depth;
       return path_tracer(sc, o);

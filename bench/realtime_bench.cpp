@@ -57,10 +57,13 @@ rate cpu_rate(const scene& sc, int width, int height, int spp, int depth, int th
   render_options opt;
   opt.threads = threads;
   opt.progress = false;
-  const path_options po{depth, true};
+  path_options po;
+  po.method = integrator::nee;  // the kernel's default
+  po.max_depth = depth;
+  const light_set lights(sc);
   const double c0 = cpu_seconds();
   const render_stats st = render(img, spp, 1, [&](sample_context& c) {
-    return reference_sample(sc, cam, c.x, c.y, width, height, c.random, po, c.rays);
+    return reference_sample(sc, lights, cam, c.x, c.y, width, height, c.random, po, c.rays);
   }, opt);
   const double paths = double(st.samples);
   return {paths / st.seconds * 1e-6, paths / (cpu_seconds() - c0) * 1e-6};

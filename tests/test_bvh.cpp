@@ -8,6 +8,7 @@
 #include <zraka/resources.hpp>
 #include <zraka/rng.hpp>
 #include <zraka/scene.hpp>
+#include <zraka/scene_query.hpp>
 #include <zraka/sphere.hpp>
 #include <zraka/tessellate.hpp>
 #include <zraka/triangle.hpp>

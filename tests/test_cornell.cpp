@@ -1,4 +1,6 @@
 #include <zraka/cornell.hpp>
+#include <zraka/lights.hpp>
+#include <zraka/scene_query.hpp>
 
 #include <doctest/doctest.h>
 
@@ -25,8 +27,10 @@ TEST_CASE_TEMPLATE("cornell: add_box makes six quads whose normals point out of 
 TEST_CASE("cornell: walls face the room, the light faces down, every camera ray hits the room") {
   for (cornell_variant v : {cornell_variant::boxes, cornell_variant::glass, cornell_variant::spheres}) {
     const scene sc = cornell_box<double>(v);
-    CHECK(sc.lights.size() == 1);
-    const auto& lamp = sc.quads[std::size_t(sc.lights[0].index)].shape;
+    const light_set ls(sc);
+    REQUIRE(ls.size() == 1);
+    REQUIRE(ls.lights()[0].object.kind == shape_kind::quad);
+    const auto& lamp = sc.quads[std::size_t(ls.lights()[0].object.index)].shape;
     CHECK(lamp.normal() == vec3(0, -1, 0));
     for (int i = 0; i < 5; ++i) {  // the five walls: normals towards the room's centre (0, 1, 0)
       const auto& q = sc.quads[std::size_t(i)].shape;

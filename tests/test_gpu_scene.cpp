@@ -156,11 +156,12 @@ TEST_CASE("reference_sample draws the pixel jitter first, then the lens, as the 
   const auto pinhole = c.prepare();
   rng g(1, 0, 0);
   std::uint64_t rays = 0;
-  const rgb v = reference_sample(sc, pinhole, 0, 0, 4, 4, g, {}, rays);
+  const light_set lights(sc);
+  const rgb v = reference_sample(sc, lights, pinhole, 0, 0, 4, 4, g, {}, rays);
   CHECK(v == sc.background);
   CHECK(g.dimension() == 4);  // two uniform() draws of two words each
   c.aperture = 0.5;
   rng h(1, 0, 0);
-  reference_sample(sc, c.prepare(), 0, 0, 4, 4, h, {}, rays);
+  reference_sample(sc, lights, c.prepare(), 0, 0, 4, 4, h, {}, rays);
   CHECK(h.dimension() == 8);  // and two more for the point on the lens
 }

@@ -40,8 +40,12 @@ reference cpu_reference(const scene& sc, int w, int h, int spp, int depth, std::
   std::vector<vec3> sum2(ref.variance.size(), vec3(0));  // each pixel is one thread's alone
   render_options opt;
   opt.progress = false;
+  path_options po;
+  po.method = integrator::nee;
+  po.max_depth = depth;
+  const light_set_t<double> lights(sc);
   render(ref.mean, spp, seed, [&](sample_context& s) {
-    const rgb v = reference_sample(sc, cam, s.x, s.y, w, h, s.random, {depth, true}, s.rays);
+    const rgb v = reference_sample(sc, lights, cam, s.x, s.y, w, h, s.random, po, s.rays);
     if (is_finite(v)) sum2[std::size_t(s.y) * std::size_t(w) + std::size_t(s.x)] += vec3(v) * vec3(v);
     return v;
   }, opt);

@@ -1,4 +1,5 @@
 #include <zraka/scene.hpp>
+#include <zraka/scene_query.hpp>
 
 #include <doctest/doctest.h>
 
@@ -55,64 +56,11 @@ TEST_CASE("scene: nearest_hit is the minimum over every object, whatever their o
   CHECK(hits > 500);
 }
 
-TEST_CASE("scene: lights are the emissive objects; bad material indices are an error") {
+TEST_CASE("scene: bad material indices are an error") {
   scene sc;
-  const int grey = sc.add_material(material::lambertian(rgb(0.5f)));
-  const int lamp = sc.add_material(material::emitter(rgb(5)));
-  sc.add(sphere{{0, 0, 0}, 1}, grey);
-  sc.add(quad{{-1, 3, -1}, {0, 0, 2}, {2, 0, 0}}, lamp);  // (0,0,2) x (2,0,0) = (0,4,0): faces up
-  sc.add(sphere{{5, 5, 5}, 0.5}, lamp);
-  CHECK(sc.lights.size() == 2);
-  CHECK(sc.lights[0].kind == shape_kind::quad);
-  CHECK(sc.lights[1].kind == shape_kind::sphere);
+  sc.add_material(material::lambertian(rgb(0.5f)));
   CHECK_THROWS_AS(sc.add(sphere{{0, 0, 0}, 1}, 7), error);
   CHECK_THROWS_AS(sc.add(quad{}, -1), error);
-}
-
-TEST_CASE("scene: quad light sampling integrates to the solid angle it subtends; pdfs agree") {
-  scene sc;
-  const int lamp = sc.add_material(material::emitter(rgb(1)));
-  // A 2 x 1 rectangle centred above the origin at height 1, facing down: u x v = -y.
-  sc.add(quad{{-1, 1, -0.5}, {2, 0, 0}, {0, 0, 1}}, lamp);
-  REQUIRE(sc.quads[0].shape.normal().y == doctest::Approx(-1));
-  const vec3 x(0, 0, 0);
-  // Solid angle of an a x b rectangle seen on its axis from distance d:
-  // 4 asin(a b / sqrt((a^2 + 4 d^2)(b^2 + 4 d^2))).
-  const double omega = 4 * std::asin(2.0 / std::sqrt((4.0 + 4.0) * (1.0 + 4.0)));
-  const int n = 40000;
-  double sum = 0, sum2 = 0;
-  for (int i = 0; i < n; ++i) {
-    rng g(5, 0, std::uint32_t(i));
-    const auto s = sample_light(sc, x, g);
-    REQUIRE(s);
-    CHECK(s->radiance == rgb(1));  // the origin sees the light's front
-    CHECK(light_pdf(sc, x, s->wi) == doctest::Approx(s->pdf).epsilon(1e-9));  // two routes, one density
-    sum += 1 / s->pdf;
-    sum2 += 1 / (s->pdf * s->pdf);
-  }
-  const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
-  INFO("estimate " << mean << " +- " << se << ", exact " << omega);
-  CHECK(std::abs(mean - omega) < 5 * se);  // 5 standard errors
-  // From above, the back of the light: zero radiance.
-  rng g(1);
-  const auto back = sample_light(sc, vec3(0, 2, 0), g);
-  REQUIRE(back);
-  CHECK(back->radiance == rgb(0));
-}
-
-TEST_CASE("scene: sphere light samples lie on the sphere with the cone's constant density") {
-  scene sc;
-  const int lamp = sc.add_material(material::emitter(rgb(2)));
-  sc.add(sphere{{0, 4, 0}, 1}, lamp);
-  const double one_minus_cos = 1 - std::sqrt(1 - 1.0 / 16);
-  for (int i = 0; i < 1000; ++i) {
-    rng g(9, 0, std::uint32_t(i));
-    const auto s = sample_light(sc, vec3(0), g);
-    REQUIRE(s);
-    CHECK(glm::length(s->point - vec3(0, 4, 0)) == doctest::Approx(1).epsilon(1e-12));
-    CHECK(s->pdf == doctest::Approx(1 / (2 * pi<double> * one_minus_cos)).epsilon(1e-9));
-    CHECK(s->radiance == rgb(2));
-  }
 }
 
 TEST_CASE("scene: shadow segments stop before the light and are blocked by what is between") {

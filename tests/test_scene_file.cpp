@@ -4,6 +4,8 @@
 // relative to the scene, then the resource root; the object BVH and mesh BVHs give the same
 // nearest hit as testing everything; rays spawned from a mesh hit never hit it again.
 #include <zraka/scene_file.hpp>
+#include <zraka/scene_query.hpp>
+#include <zraka/lights.hpp>
 
 #include <doctest/doctest.h>
 
@@ -148,7 +150,7 @@ objects:
   CHECK(sc.point_lights[0].position == vec3(0, 9, 0));
   CHECK(sc.point_lights[0].intensity == rgb(1, 2, 3));
   // Area lights: the light quad, the light sphere, and the emitter quad object.
-  CHECK(sc.lights.size() == 3);
+  CHECK(light_set(sc).size() == 4);  // and the point light
   REQUIRE(sc.spheres.size() == 2);
   CHECK(sc.spheres[1].shape.center == vec3(1, 0, 0));
   CHECK(sc.spheres[1].shape.radius == 0.5);

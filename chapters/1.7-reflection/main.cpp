@@ -79,13 +79,14 @@ int main(int argc, char** argv) {
     for (int i = 0; i < 4; ++i) sc.add(sphere{{-1.65 + 1.1 * i, 0.5, 0}, 0.5}, sc.add_material(balls[i].m));
     path_options po;
     po.max_depth = depth;
+    const path_tracer tracer(sc, po);
     stopwatch total;
 
     image img(width, height);
     const auto cam = sc.prepared_camera();
     const render_stats st = render(img, spp, seed, [&](sample_context& c) {
       const vec2 o = pixel_sample(pixel_pattern::stratified, c.sample, c.spp, c.random);
-      return path_radiance(sc, cam.generate((c.x + o.x) / width, (c.y + o.y) / height), c.random, po, c.rays);
+      return tracer(cam.generate((c.x + o.x) / width, (c.y + o.y) / height), c.random, c.rays);
     }, opt);
     write_png(img, out + ".png");
     std::printf("%s\nwrote %s.png\n", summary(img, spp, st).c_str(), out.c_str());
@@ -102,7 +103,7 @@ int main(int argc, char** argv) {
       std::uint64_t rays = 0;
       for (int s = 0; s < probe_samples; ++s) {
         rng g(seed, 1000000u + probe, std::uint32_t(s));
-        e_mean.add(luminance(path_radiance(sc, r, g, po, rays)));
+        e_mean.add(luminance(tracer(r, g, rays)));
       }
       return e_mean;
     };

@@ -100,10 +100,11 @@ int main(int argc, char** argv) {
     const auto cam = sc.prepared_camera();
     path_options po;
     po.max_depth = depth;
+    const path_tracer tracer(sc, po);
     image img(width, height);
     const render_stats st = render(img, spp, seed, [&](sample_context& c) {
       const vec2 o = pixel_sample(pixel_pattern::stratified, c.sample, c.spp, c.random);
-      return path_radiance(sc, cam.generate((c.x + o.x) / width, (c.y + o.y) / height), c.random, po, c.rays);
+      return tracer(cam.generate((c.x + o.x) / width, (c.y + o.y) / height), c.random, c.rays);
     }, opt);
     write_png(img, out + ".png");
     std::printf("%s\nwrote %s.png\n", summary(img, spp, st).c_str(), out.c_str());

@@ -17,6 +17,7 @@
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/render.hpp>
 #include <zraka/scene.hpp>
+#include <zraka/scene_query.hpp>
 
 #include <zraka/cli.hpp>
 

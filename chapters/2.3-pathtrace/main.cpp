@@ -15,7 +15,7 @@
 #include <zraka/error.hpp>
 #include <zraka/image_error.hpp>
 #include <zraka/image_io.hpp>
-#include <zraka/integrators.hpp>
+#include <zraka/path.hpp>
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/progressive.hpp>
 #include <zraka/scene_file.hpp>
@@ -160,7 +160,7 @@ int main(int argc, char** argv) {
     const int W = width.value_or(sc.settings.width), H = height.value_or(sc.settings.height);
     image::check_size(W, H);
     sc.settings.width = W, sc.settings.height = H;
-    integrator_options io;
+    path_options io;
     io.method = parse_integrator(method);
     io.max_depth = depth.value_or(sc.settings.max_depth);
     io.rr_depth = rr_depth;

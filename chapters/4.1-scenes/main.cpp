@@ -8,6 +8,8 @@
 #include <zraka/cli.hpp>
 #include <zraka/error.hpp>
 #include <zraka/scene_file.hpp>
+#include <zraka/scene_query.hpp>
+#include <zraka/lights.hpp>
 #include <zraka/stopwatch.hpp>
 
 #include <cstdio>
@@ -34,7 +36,7 @@ int main(int argc, char** argv) {
     std::printf("summary: loaded %s in %.3f s: %zu materials, %zu objects, %zu point lights, %zu area lights, "
                 "image %dx%d at %d spp\n",
                 scene_path.c_str(), seconds, ls.sc.materials.size(), objects, ls.sc.point_lights.size(),
-                ls.sc.lights.size(), ls.sc.settings.width, ls.sc.settings.height, ls.sc.settings.spp);
+                light_set(ls.sc).size() - ls.sc.point_lights.size(), ls.sc.settings.width, ls.sc.settings.height, ls.sc.settings.spp);
     return 0;
   });
 }

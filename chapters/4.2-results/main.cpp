@@ -16,7 +16,7 @@
 #include <zraka/error.hpp>
 #include <zraka/image_error.hpp>
 #include <zraka/image_io.hpp>
-#include <zraka/integrators.hpp>
+#include <zraka/path.hpp>
 #include <zraka/progressive.hpp>
 
 #include <CLI/CLI.hpp>
@@ -50,7 +50,7 @@ struct renderer {
   std::uint64_t seed;
 
   image draw(integrator m, int depth, int spp, std::uint64_t s, render_stats* stats = nullptr) const {
-    integrator_options o;
+    path_options o;
     o.method = m;
     o.max_depth = depth;
     const path_tracer t(sc, o);
@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
     std::printf("\nerror against run time, %d bounces, up to %d spp\n", depth, conv_spp);
     double target = 0, naive_seconds = 0;
     for (integrator m : {integrator::naive, integrator::nee, integrator::mis}) {
-      integrator_options o;
+      path_options o;
       o.method = m;
       o.max_depth = depth;
       const path_tracer t(glass.sc, o);

@@ -15,6 +15,7 @@
 #include <zraka/image_io.hpp>
 #include <zraka/realtime.hpp>
 #include <zraka/scene_file.hpp>
+#include <zraka/scene_query.hpp>
 #include <zraka/stopwatch.hpp>
 
 #include <CLI/CLI.hpp>

@@ -18,6 +18,8 @@
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/render.hpp>
 #include <zraka/scene.hpp>
+#include <zraka/lights.hpp>
+#include <zraka/scene_query.hpp>
 
 #include <zraka/cli.hpp>
 
@@ -58,48 +60,49 @@ const char* name(strategy s) {
 // [listing direct]
 // L_o at the first hit of camera ray r, from one direction sampled by strategy s. u_light and
 // u are the sample's random numbers (stratified for the reference, plain otherwise).
-rgb direct(const scene& sc, const ray& r, strategy s, double w_light, double u_choice, double u_light,
-           vec2 u, std::uint64_t& rays) {
+rgb direct(const scene& sc, const light_set& lights, const ray& r, strategy s, double w_light,
+           double u_choice, double u_light, vec2 u, std::uint64_t& rays) {
   scene_hit sh;
   ++rays;
   if (!nearest_hit(sc, r, sh)) return sc.background;
-  const material& m = sc.materials[sh.material];
+  const material& m = sc.materials[std::size_t(sh.material)];
   const rgb Le = emitted(m, sh.h);
   if (m.kind == material_kind::emitter) return Le;
   const vec3 n = sh.h.facing_normal(), wo = -r.direction, x = sh.h.p;
 
   vec3 wi;
-  double pdf = 0;
+  int sampled = -1;  // the light a light sample aimed at
   switch (s) {
-    case strategy::uniform:
-      wi = uniform_hemisphere_dist(n).sample(u), pdf = uniform_hemisphere_dist(n).pdf(wi);
-      break;
-    case strategy::cosine:
-      wi = cosine_hemisphere_dist(n).sample(u), pdf = cosine_hemisphere_dist(n).pdf(wi);
-      break;
-    case strategy::light: {
-      const auto ls = sample_light(sc, x, u_light, u);
-      if (!ls) return Le;
-      wi = ls->wi, pdf = ls->pdf;
-      break;
-    }
-    case strategy::mixture: {  // pick one technique, divide by the density of both
-      if (u_choice < w_light) {
-        const auto ls = sample_light(sc, x, u_light, u);
+    case strategy::uniform: wi = uniform_hemisphere_dist(n).sample(u); break;
+    case strategy::cosine: wi = cosine_hemisphere_dist(n).sample(u); break;
+    case strategy::light:
+    case strategy::mixture:  // pick one technique, divide by the density of both
+      if (s == strategy::light || u_choice < w_light) {
+        const auto ls = lights.sample(sh.h, u_light, u);
         if (!ls) return Le;
         wi = ls->wi;
+        sampled = ls->light;
       } else {
         wi = cosine_hemisphere_dist(n).sample(u);
       }
-      pdf = w_light * light_pdf(sc, x, wi) + (1 - w_light) * cosine_hemisphere_dist(n).pdf(wi);
       break;
-    }
   }
-  if (!(pdf > 0)) return Le;
   // L_i(wi): what the first surface along wi emits (black sky, no further bounces).
   scene_hit lh;
   ++rays;
-  const rgb Li = nearest_hit(sc, spawn_ray(sh.h, wi), lh) ? emitted(sc.materials[lh.material], lh.h) : sc.background;
+  const bool found = nearest_hit(sc, spawn_ray(sh.h, wi), lh);
+  if (sampled >= 0 && (!found || lights.index_of(lh.object) != sampled)) return Le;  // in the shadow
+  const rgb Li = found ? emitted(sc.materials[std::size_t(lh.material)], lh.h) : sc.background;
+  // The density of wi: the light sampler's is that of the light the ray finds first (lights.hpp).
+  const double p_light = found ? lights.pdf(lh.object, x, wi, lh.h) : 0.0;
+  double pdf = 0;
+  switch (s) {
+    case strategy::uniform: pdf = uniform_hemisphere_dist(n).pdf(wi); break;
+    case strategy::cosine: pdf = cosine_hemisphere_dist(n).pdf(wi); break;
+    case strategy::light: pdf = p_light; break;
+    case strategy::mixture: pdf = w_light * p_light + (1 - w_light) * cosine_hemisphere_dist(n).pdf(wi); break;
+  }
+  if (!(pdf > 0)) return Le;
   return Le + brdf_cos(m, sh.h, wo, wi) * Li / float(pdf);
 }
 // [end]
@@ -147,6 +150,7 @@ int main(int argc, char** argv) {
     if (!(target > 0)) throw error("--target must be positive");
     figure_spp = std::min(figure_spp, max_spp);
     const scene sc = lit_scene(width, height);
+    const light_set lights(sc);
     const auto cam = sc.prepared_camera();
     stopwatch total;
     std::uint64_t bad = 0;
@@ -160,7 +164,7 @@ int main(int argc, char** argv) {
     image reference(width, height);
     const render_stats rs = render(reference, ref_spp, seed ^ 0x5eed5eed5eedull, [&](sample_context& c) {
       const vec2 u = pixel_sample(pixel_pattern::stratified, c.sample, c.spp, c.random);
-      return direct(sc, camera_ray(c), strategy::light, w_light, 0.0, c.random.uniform(), u, c.rays);
+      return direct(sc, lights, camera_ray(c), strategy::light, w_light, 0.0, c.random.uniform(), u, c.rays);
     }, opt);
     bad += rs.nonfinite;
     std::printf("reference: %d spp, stratified light sampling, %.2f s, mean value %.5f\n", ref_spp, rs.seconds,
@@ -178,7 +182,7 @@ int main(int argc, char** argv) {
         // [listing estimate]
         const render_stats st = render(img, spp, seed, [&](sample_context& c) {
           const double u_choice = c.random.uniform(), u_light = c.random.uniform();
-          return direct(sc, camera_ray(c), s, w_light, u_choice, u_light, c.random.uniform2(), c.rays);
+          return direct(sc, lights, camera_ray(c), s, w_light, u_choice, u_light, c.random.uniform2(), c.rays);
         }, opt);
         // [end]
         bad += st.nonfinite;

@@ -21,6 +21,7 @@
 // features() says what a scene uses and build_options() turns that into -D switches, so the
 // kernel compiled for a scene of diffuse spheres has no triangle, BVH or glass code at all.
 #include <zraka/error.hpp>
+#include <zraka/lights.hpp>
 #include <zraka/path.hpp>
 #include <zraka/scene.hpp>
 #include <zraka/triangle_bvh.hpp>
@@ -167,6 +168,16 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, int max_depth,
   if (width < 1 || height < 1) throw error("image size must be positive");
   gpu_scene g;
   auto& f = g.features;
+  // C++ code cannot run in the kernel: refuse it by name, before anything is built.
+  if (!sc.user_shapes.empty())
+    throw error("realtime: the scene has a user shape ('" + sc.user_shapes[0].shape->name() +
+                "'), which the OpenCL kernel cannot intersect; render it with pathtrace");
+  for_each_object(sc, [&](object_ref o) {
+    const material& m = sc.material_of(o);
+    if (is_custom(m))
+      throw error("realtime: material " + std::to_string(sc.material_index(o)) + " is a custom BSDF ('" +
+                  m.bsdf->name() + "'), which the OpenCL kernel cannot run; render it with pathtrace");
+  });
   for (const material& m : sc.materials) {
     g.materials.push_back(to_gpu(m));
     if (m.kind == material_kind::phong)
@@ -222,6 +233,9 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, int max_depth,
       g.nodes.push_back(o);
     }
   }
+  for (const auto& l : light_set_t<T>(sc, light_selection::uniform).lights())
+    if (l.point < 0 && (l.object.kind == shape_kind::sphere || l.object.kind == shape_kind::quad))
+      g.lights.push_back({l.object.kind == shape_kind::sphere ? 0 : 1, l.object.index});
   if (!sc.point_lights.empty())
     g.notes.push_back(std::to_string(sc.point_lights.size()) +
                       " point light(s) ignored, as path.hpp does (they have no area to hit)");
@@ -230,11 +244,9 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, int max_depth,
       g.notes.push_back("mesh vertex normals ignored: the kernel shades triangles flat");
       break;
     }
-  if (sc.lights.empty() && !f.emitters && sc.background == rgb(0))
+  if (g.lights.empty() && !f.emitters && sc.background == rgb(0))
     g.notes.push_back("no area light, no glowing surface and a black background: the image is "
                       "black (point lights need the Whitted tracer)");
-  for (const object_ref& l : sc.lights)
-    g.lights.push_back({l.kind == shape_kind::sphere ? 0 : 1, l.index});
 
   camera_t<T> c = sc.camera;
   c.aspect = T(width) / T(height);
@@ -279,8 +291,9 @@ inline std::string build_options(const gpu_features& f, bool all_features = fals
 // The CPU twin of one kernel sample: the same pixel jitter and lens draws from the same stream
 // rng(seed, pixel, sample), then path.hpp's path tracer in double (NEE as its default).
 template <class T>
-rgb reference_sample(const scene_t<T>& sc, const typename camera_t<T>::prepared& cam, int x, int y,
-                     int width, int height, rng& g, const path_options& opt, std::uint64_t& rays) {
+rgb reference_sample(const scene_t<T>& sc, const light_set_t<T>& lights,
+                     const typename camera_t<T>::prepared& cam, int x, int y, int width, int height, rng& g,
+                     const path_options& opt, std::uint64_t& rays) {
   const T sx = (T(x) + T(g.uniform())) / T(width);
   const T sy = (T(y) + T(g.uniform())) / T(height);
   T lu = 0, lv = 0;
@@ -288,7 +301,7 @@ rgb reference_sample(const scene_t<T>& sc, const typename camera_t<T>::prepared&
     lu = T(g.uniform());
     lv = T(g.uniform());
   }
-  return path_radiance(sc, cam.generate(sx, sy, lu, lv), g, opt, rays);
+  return path_radiance(sc, lights, cam.generate(sx, sy, lu, lv), g, opt, rays);
 }
 // [end]
 

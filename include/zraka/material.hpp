@@ -19,9 +19,8 @@
 // when `two_sided` is set (book 2.3's furnace: a Lambertian sphere that glows inwards).
 // A material is data, so a scene file can describe it field by field; the one exception is
 // `bsdf`, a user-defined BSDF (custom_bsdf.hpp) that, when set, replaces the kind's reflection in
-// scatter(), brdf_cos() and scatter_pdf() (material::custom). Its kind stays lambertian, so a
-// renderer that does not know custom BSDFs (whitted.hpp, gpu_scene.hpp, scene files) sees a
-// diffuse surface; the path tracers use the BSDF itself.
+// scatter(), brdf_cos() and scatter_pdf() (material::custom). Renderers that cannot run one
+// (whitted.hpp, the OpenCL kernel) refuse it by name: is_custom().
 #include <zraka/bxdf.hpp>
 #include <zraka/custom_bsdf.hpp>
 #include <zraka/error.hpp>
@@ -106,6 +105,16 @@ inline bool is_specular(const material& m) {
   if (m.bsdf) return false;  // a custom BSDF has a density (custom_bsdf.hpp)
   return m.kind == material_kind::fuzzy_metal || m.kind == material_kind::dielectric;
 }
+// Does brdf_cos() give anything to sample lights with? (Lambert, Phong, custom BSDFs.)
+inline bool has_density(const material& m) {
+  return m.bsdf || m.kind == material_kind::lambertian || m.kind == material_kind::phong;
+}
+inline bool is_custom(const material& m) { return bool(m.bsdf); }
+
+// What a custom BSDF sees of a hit: the point, uv and a frame around the facing normal.
+template <class T> bsdf_frame frame_at(const hit_t<T>& h) {
+  return bsdf_frame::around(vec3(h.p), vec2(h.uv), vec3(h.facing_normal()), h.front_face);
+}
 
 // One-sided emitters shine from their front face only (a quad light faces along its normal).
 template <class T> rgb emitted(const material& m, const hit_t<T>& h) {
@@ -141,7 +150,7 @@ template <class T>
 rgb brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const vec3_t<T>& wi) {
   if (m.bsdf) {
     const vec3_t<T> n = h.facing_normal();
-    return rgb(vec3_t<T>(m.bsdf->eval(vec3(wo), vec3(wi), vec3(n))) * std::max(T(0), glm::dot(n, wi)));
+    return rgb(vec3_t<T>(m.bsdf->eval(frame_at(h), vec3(wo), vec3(wi))) * std::max(T(0), glm::dot(n, wi)));
   }
   if (m.kind != material_kind::lambertian && m.kind != material_kind::phong) return rgb(0);
   const vec3_t<T> n = h.facing_normal();
@@ -151,7 +160,7 @@ rgb brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const ve
 
 template <class T>
 T scatter_pdf(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const vec3_t<T>& wi) {
-  if (m.bsdf) return T(m.bsdf->pdf(vec3(wo), vec3(wi), vec3(h.facing_normal())));
+  if (m.bsdf) return T(m.bsdf->pdf(frame_at(h), vec3(wo), vec3(wi)));
   if (m.kind != material_kind::lambertian && m.kind != material_kind::phong) return T(0);
   return brdf_at(m, h).pdf(wi, wo, h.facing_normal());
 }
@@ -160,23 +169,30 @@ T scatter_pdf(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const v
 template <class T>
 std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const hit_t<T>& h, rng& g) {
   const vec3_t<T> n = h.facing_normal();  // on the side the ray came from
-  if (m.bsdf) {  // user-defined (custom_bsdf.hpp); the same two uniform numbers as Lambert
-    const auto sm = m.bsdf->sample(vec3(-d), vec3(n), g.uniform2());
-    if (!sm || !(sm->pdf > 0)) return std::nullopt;  // lost below the surface: absorbed
-    return scatter_t<T>{vec3_t<T>(sm->wi), rgb(sm->weight), T(sm->pdf), false};
-  }
-  switch (m.kind) {
-    case material_kind::lambertian: {  // cosine-weighted: f cos / pdf = albedo exactly
+  if (m.kind == material_kind::emitter && !m.bsdf) return std::nullopt;
+  if (has_density(m)) {
+    // Every surface with a density draws three numbers, two for the direction and one for a
+    // lobe, whether it uses the third or not: the path's later numbers then do not depend on
+    // which material it met (a custom Lambert gives the built-in one's paths bit for bit).
+    const vec2 u = g.uniform2();
+    const double u_lobe = g.uniform();
+    if (m.bsdf) {  // user-defined (custom_bsdf.hpp)
+      const auto sm = m.bsdf->sample(frame_at(h), vec3(-d), vec3(u, u_lobe));
+      if (!sm || !(sm->pdf > 0)) return std::nullopt;  // lost below the surface: absorbed
+      return scatter_t<T>{vec3_t<T>(sm->wi), rgb(sm->weight), T(sm->pdf), false};
+    }
+    if (m.kind == material_kind::lambertian) {  // cosine-weighted: f cos / pdf = albedo exactly
       const lambert_brdf_t<T> f{vec3_t<T>(evaluate(m.albedo, h.p, n))};
-      const auto sm = f.sample(-d, n, vec2_t<T>(g.uniform2()));
+      const auto sm = f.sample(-d, n, vec2_t<T>(u));
       if (!sm) return std::nullopt;  // grazing: d along the surface, or rounding on the horizon
       return scatter_t<T>{sm->wi, rgb(sm->weight), sm->pdf, false};
     }
-    case material_kind::phong: {  // Lambert + normalised Phong, sampled as their mixture
-      const auto sm = brdf_at(m, h).sample(-d, n, vec2_t<T>(g.uniform2()));
-      if (!sm) return std::nullopt;  // sampled below the surface: absorbed
-      return scatter_t<T>{sm->wi, rgb(sm->weight), sm->pdf, false};
-    }
+    // phong: Lambert + normalised Phong, sampled as their mixture (bxdf.hpp reuses u for the lobe)
+    const auto sm = brdf_at(m, h).sample(-d, n, vec2_t<T>(u));
+    if (!sm) return std::nullopt;  // sampled below the surface: absorbed
+    return scatter_t<T>{sm->wi, rgb(sm->weight), sm->pdf, false};
+  }
+  switch (m.kind) {
     case material_kind::fuzzy_metal: {  // mirror direction + fuzz * point in the unit ball
       const vec3_t<T> ball = sample_unit_ball(vec3_t<T>(g.uniform(), g.uniform(), g.uniform()));
       const auto wi = fuzzy_mirror(d, n, T(m.fuzz), ball);
@@ -194,8 +210,10 @@ std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const
         return scatter_t<T>{*t, rgb(1), T(0), true};
       return scatter_t<T>{reflect(d, n), rgb(1), T(0), true};
     }
+    case material_kind::lambertian:
+    case material_kind::phong:
     case material_kind::emitter:
-      return std::nullopt;
+      break;
   }
   return std::nullopt;
 }

@@ -1,69 +1,145 @@
 #pragma once
-// A compact path tracer over a scene (book 2.3, the loop of Listing 4.6 done right): follow one
-// path from the camera, at each hit add the light emitted there, then continue in the direction
-// the material scatters to, multiplying the throughput by the material's weight f cos / pdf
-// (erratum C6: the weight, not "colour times cosine").
+// The path tracer (book 2.3): one loop that estimates the rendering equation
+//     L_o(x, wo) = L_e(x, wo) + integral f(x, wi, wo) L_i(x, wi) |cos theta_i| dwi
+// by following one path from the camera. Its option `method` decides how light is found, with
+// the same mean and different noise:
+//   naive  the thesis's algorithm (Listing 2.3, iterative as in its Listing 4.6): follow the
+//          scattered ray and add the light it happens to hit. The throughput beta is multiplied
+//          by f cos / pdf, the cosine counted once (erratum C6). It cannot find point lights (a
+//          ray never hits a point), so it refuses scenes that have them.
+//   nee    next-event estimation (erratum C4): at every hit with a density also pick a point on
+//          a light (lights.hpp) and add its light if the shadow segment is free. Emission the
+//          scattered ray then finds on a sampled light is skipped: it was counted.
+//   mis    multiple importance sampling (Veach and Guibas 1995): the light sample and the
+//          BSDF-sampled ray that hits a light are both kept, each weighted by the power heuristic
+//          of the two densities for its direction, so the two weights of one path sum to one.
+// Emission nobody samples (the background, an infinite plane: lights.hpp) is always counted
+// where a ray finds it. Paths stop at max_depth bounces and, from rr_depth bounces on, go on
+// with probability q = min(1, max throughput), dividing by q (Russian roulette: unbiased).
 //
-// With next_event on (the default) it also samples a light at every non-specular hit and adds
-// its contribution if the shadow segment is free (next-event estimation, erratum C4). Emission
-// found by the scattered ray after such a hit is then skipped, or it would be counted twice.
-// Mirrors and glass cannot use light samples (a point light is never in their exact direction),
-// so emission seen through them is always counted. Paths longer than three bounces continue
-// with probability min(1, max throughput) (Russian roulette), which keeps the mean unchanged.
-//
-// integrators.hpp holds the full versions of book 2.3 (naive, nee, mis, selectable; glowing
-// surfaces and point lights sampled too); this compact one serves chapters 1.7 and 1.8.
+// The OpenCL kernel (kernels/pathtrace.cl) mirrors this loop line for line.
+#include <zraka/lights.hpp>
 #include <zraka/material.hpp>
 #include <zraka/rng.hpp>
 #include <zraka/scene.hpp>
+#include <zraka/scene_query.hpp>
 #include <zraka/spawn.hpp>
 
 #include <cstdint>
+#include <string>
+#include <string_view>
 
 namespace zraka {
 
+enum class integrator { naive, nee, mis };
+
+inline const char* name(integrator i) {
+  switch (i) {
+    case integrator::naive: return "naive";
+    case integrator::nee: return "nee";
+    case integrator::mis: return "mis";
+  }
+  return "?";
+}
+
+inline integrator parse_integrator(std::string_view s) {
+  for (integrator i : {integrator::naive, integrator::nee, integrator::mis})
+    if (s == name(i)) return i;
+  throw error("unknown integrator '" + std::string(s) + "' (naive, nee, mis)");
+}
+
 struct path_options {
-  int max_depth = 8;         // bounces; 1 = direct light only
-  bool next_event = true;    // sample the lights at diffuse hits
+  integrator method = integrator::mis;
+  int max_depth = 8;  // bounces; 0 = only what the camera ray hits (the thesis's depth 1)
+  int rr_depth = 3;   // Russian roulette from this many bounces on
+  light_selection lights = light_selection::power;
 };
+
+// The power heuristic (exponent 2) for a sample of density a, the other technique's being b.
+template <class T> T power_heuristic(T a, T b) {
+  if (!(a > T(0))) return T(0);
+  if (std::isinf(a)) return T(1);
+  const T r = b / a;  // a^2 / (a^2 + b^2) without overflowing a^2
+  return T(1) / (T(1) + r * r);
+}
+
+// [listing roulette]
+// Russian roulette: true if the path goes on (then beta has been divided by q).
+inline bool survives_roulette(rgb& beta, int bounce, const path_options& opt, rng& g) {
+  if (bounce < opt.rr_depth) return true;
+  const float q = std::min(1.0f, max_component(beta));
+  if (!(g.uniform() < q)) return false;
+  beta /= q;
+  return true;
+}
+// [end]
 
 // [listing path]
 template <class T>
-rgb path_radiance(const scene_t<T>& sc, ray_t<T> r, rng& g, const path_options& opt, std::uint64_t& rays) {
+rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r, rng& g,
+                  const path_options& opt, std::uint64_t& rays) {
+  const bool nee = opt.method != integrator::naive, mis = opt.method == integrator::mis;
   rgb L(0), beta(1);
-  bool count_emission = true;  // camera rays, and rays after a specular bounce or without NEE
-  for (int depth = 0; depth <= opt.max_depth; ++depth) {
+  bool specular = true;  // the last bounce had no density (camera rays count as specular)
+  T bsdf_pdf = T(0);     // the density of the last scattered direction
+  vec3_t<T> from(T(0));  // the point it left from
+  for (int bounce = 0;; ++bounce) {
     scene_hit_t<T> sh;
     ++rays;
-    if (!nearest_hit(sc, r, sh)) {
-      L += beta * sc.background;  // the sky is a light no sampler knows about: always counted
-      break;
+    if (!nearest_hit(sc, r, sh)) return L + beta * sc.background;  // no sampler knows the sky
+    const material& m = sc.materials[std::size_t(sh.material)];
+    // Emission found by this ray: all of it, its MIS share, or none (nee: the light sample at
+    // the previous hit counted this light already).
+    if (const rgb Le = emitted(m, sh.h); Le != rgb(0)) {
+      if (!nee || specular || lights.index_of(sh.object) < 0) L += beta * Le;
+      else if (mis) L += beta * Le * float(power_heuristic(bsdf_pdf, lights.pdf(sh.object, from, r.direction, sh.h)));
     }
-    const material& m = sc.materials[sh.material];
-    if (count_emission) L += beta * emitted(m, sh.h);
-    if (m.kind == material_kind::emitter || depth == opt.max_depth) break;
-
+    if (bounce == opt.max_depth) return L;
     const vec3_t<T> wo = -r.direction;
-    if (opt.next_event && !is_specular(m)) {
-      if (const auto ls = sample_light(sc, sh.h.p, g); ls && ls->radiance != rgb(0)) {
-        ++rays;
-        if (!occluded(sc, spawn_segment(sh.h, ls->point)))
-          L += beta * brdf_cos(m, sh.h, wo, ls->wi) * ls->radiance / float(ls->pdf);
+    if (nee && has_density(m)) {  // the next event: a point on a light
+      const T u_select = T(g.uniform());
+      const vec2_t<T> u(g.uniform2());
+      if (const auto e = lights.sample(sh.h, u_select, u); e && e->Le != rgb(0)) {
+        const rgb f_cos = brdf_cos(m, sh.h, wo, e->wi);
+        if (f_cos != rgb(0)) {
+          ++rays;
+          if (!occluded(sc, e->shadow)) {
+            const T w = mis && !e->delta ? power_heuristic(e->pdf, scatter_pdf(m, sh.h, wo, e->wi)) : T(1);
+            L += beta * f_cos * e->Le * float(w / e->pdf);
+          }
+        }
       }
     }
     const auto s = scatter(m, r.direction, sh.h, g);
-    if (!s) break;  // absorbed
-    beta *= s->weight;
-    count_emission = s->specular || !opt.next_event;
-    if (depth >= 3) {  // Russian roulette
-      const float q = std::min(1.0f, max_component(beta));
-      if (!(g.uniform() < q)) break;
-      beta /= q;
-    }
+    if (!s) return L;  // absorbed (or a light, which does not reflect)
+    beta *= s->weight;  // f cos / pdf: the cosine is counted once, inside the weight
+    specular = s->specular;
+    bsdf_pdf = s->pdf;
+    from = sh.h.p;
+    if (!survives_roulette(beta, bounce, opt, g)) return L;
     r = spawn_ray(sh.h, s->direction);
   }
-  return L;
 }
 // [end]
+
+// A scene, its lights and the options, ready to give the radiance along a camera ray.
+template <class T> struct path_tracer_t {
+  const scene_t<T>& sc;
+  light_set_t<T> lights;
+  path_options opt;
+
+  path_tracer_t(const scene_t<T>& scene, const path_options& o) : sc(scene), lights(scene, o.lights), opt(o) {
+    if (o.max_depth < 0) throw error("the maximum depth must not be negative, got " + std::to_string(o.max_depth));
+    if (o.rr_depth < 0) throw error("the Russian roulette depth must not be negative");
+    if (o.method == integrator::naive && !scene.point_lights.empty())
+      throw error("integrator naive: the scene has " + std::to_string(scene.point_lights.size()) +
+                  " point light(s), which a ray can never hit; use nee or mis");
+  }
+  rgb operator()(const ray_t<T>& r, rng& g, std::uint64_t& rays) const {
+    return path_radiance(sc, lights, r, g, opt, rays);
+  }
+};
+
+using path_tracer = path_tracer_t<double>;
 
 }  // namespace zraka

@@ -1,30 +1,30 @@
 #pragma once
 // A scene described in code (book 2.2, 2.3, 4.1): materials, objects that name their material by
-// index, point lights, the area lights (every sphere or quad whose material emits), a background
-// colour, the camera and the render settings (the thesis's "hyper-parameters", Def 4.1.1). The
-// scene file loader (scene_file.hpp) fills the same struct.
+// index, point lights, a background colour, the camera and the render settings (the thesis's
+// "hyper-parameters", Def 4.1.1). The scene file loader (scene_file.hpp) fills the same struct.
+// This header holds the data; scene_query.hpp asks it for hits, lights.hpp for its lights.
 //
-// Objects: spheres, quads (a box is six of them), infinite planes, single triangles, and meshes
-// (each with its own triangle BVH, built when the mesh is added). Geometry queries go through two
-// functions only, nearest_hit() and occluded(). They test every object, unless
-// build_acceleration() found enough bounded objects to make an object BVH pay (bvh.hpp); planes
-// are infinite and are always tested. Renderers never know which of the two happened.
+// Objects: spheres, quads (a box is six of them), infinite planes, single triangles, meshes
+// (each with its own triangle BVH, built when the mesh is added) and user shapes
+// (user_shape.hpp: any shape a program defines). visit_object() is the one place that knows the
+// list of kinds; everything else (intersection, bounds, light sampling) asks it.
+// build_acceleration() makes an object BVH over the bounded objects when there are enough of
+// them to pay; planes are infinite and are always tested.
 #include <zraka/bvh.hpp>
 #include <zraka/camera.hpp>
 #include <zraka/material.hpp>
 #include <zraka/mesh.hpp>
 #include <zraka/plane.hpp>
 #include <zraka/quad.hpp>
-#include <zraka/sampling.hpp>
 #include <zraka/spawn.hpp>
 #include <zraka/sphere.hpp>
 #include <zraka/stopwatch.hpp>
 #include <zraka/triangle.hpp>
 #include <zraka/triangle_bvh.hpp>
+#include <zraka/user_shape.hpp>
 
 #include <cstdint>
-#include <cstdio>
-#include <optional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,16 +38,23 @@ struct render_settings {
   std::uint64_t seed = 1;
 };
 
-enum class shape_kind { sphere, quad, plane, triangle, mesh };
+enum class shape_kind { sphere, quad, plane, triangle, mesh, user };
 struct object_ref {
   shape_kind kind;
   int index;  // into the scene's vector of that kind
+  bool operator==(const object_ref&) const = default;
 };
 
 // A point light: radiant intensity I, so the irradiance at distance d, facing it, is I / d^2.
 template <class T> struct point_light_t {
   vec3_t<T> position{T(0)};
   rgb intensity{20.0f};
+};
+
+// An object: a shape and the index of its material.
+template <class S> struct object_t {
+  S shape;
+  int material = 0;
 };
 
 // A mesh object: the triangles (in T, for exact hit points and shading normals) and their BVH
@@ -59,23 +66,9 @@ template <class T> struct mesh_object_t {
   double build_seconds = 0;
 };
 
+template <class T> using user_shape_ptr = std::shared_ptr<const user_shape_t<T>>;
+
 template <class T> struct scene_t {
-  struct sphere_object {
-    sphere_t<T> shape;
-    int material;
-  };
-  struct quad_object {
-    parallelogram_t<T> shape;
-    int material;
-  };
-  struct plane_object {
-    plane_t<T> shape;
-    int material;
-  };
-  struct triangle_object {
-    triangle_t<T> shape;
-    int material;
-  };
   // The object BVH over the bounded objects, when build_acceleration() decided to make one.
   struct acceleration {
     bvh_t<T> tree;
@@ -84,13 +77,13 @@ template <class T> struct scene_t {
   };
 
   std::vector<material> materials;
-  std::vector<sphere_object> spheres;
-  std::vector<quad_object> quads;
-  std::vector<plane_object> planes;
-  std::vector<triangle_object> triangles;
+  std::vector<object_t<sphere_t<T>>> spheres;
+  std::vector<object_t<parallelogram_t<T>>> quads;
+  std::vector<object_t<plane_t<T>>> planes;
+  std::vector<object_t<triangle_t<T>>> triangles;
   std::vector<mesh_object_t<T>> meshes;
+  std::vector<object_t<user_shape_ptr<T>>> user_shapes;
   std::vector<point_light_t<T>> point_lights;
-  std::vector<object_ref> lights;  // area lights, kept up to date by add()
   rgb background{0};               // radiance of rays that leave the scene
   rgb ambient{0};                  // Whitted only: Phong's ambient light I_a
   camera_t<T> camera;
@@ -101,28 +94,12 @@ template <class T> struct scene_t {
     materials.push_back(m);
     return static_cast<int>(materials.size()) - 1;
   }
-  object_ref add(const sphere_t<T>& s, int mat) {
-    check_material(mat);
-    spheres.push_back({s, mat});
-    return note_light({shape_kind::sphere, static_cast<int>(spheres.size()) - 1}, mat);
-  }
-  object_ref add(const parallelogram_t<T>& q, int mat) {
-    check_material(mat);
-    quads.push_back({q, mat});
-    return note_light({shape_kind::quad, static_cast<int>(quads.size()) - 1}, mat);
-  }
-  // Planes, triangles and meshes may use an emitter material: they glow where seen, but are not
-  // sampled as lights (only spheres and quads have samplers).
-  object_ref add(const plane_t<T>& p, int mat) {
-    check_material(mat);
-    planes.push_back({p, mat});
-    return {shape_kind::plane, static_cast<int>(planes.size()) - 1};
-  }
-  object_ref add(const triangle_t<T>& t, int mat) {
-    check_material(mat);
-    triangles.push_back({t, mat});
-    return {shape_kind::triangle, static_cast<int>(triangles.size()) - 1};
-  }
+  object_ref add(const sphere_t<T>& s, int mat) { return push(spheres, s, mat, shape_kind::sphere); }
+  object_ref add(const parallelogram_t<T>& q, int mat) { return push(quads, q, mat, shape_kind::quad); }
+  // An infinite plane may glow, but it cannot be sampled as a light (it has no finite area to
+  // pick a point on): its light is counted only where a ray finds it (lights.hpp says so).
+  object_ref add(const plane_t<T>& p, int mat) { return push(planes, p, mat, shape_kind::plane); }
+  object_ref add(const triangle_t<T>& t, int mat) { return push(triangles, t, mat, shape_kind::triangle); }
   object_ref add(mesh_t<T> m, int mat) {
     check_material(mat);
     if (!m.normals.empty() && m.normals.size() != m.positions.size())
@@ -137,23 +114,21 @@ template <class T> struct scene_t {
     meshes.push_back(std::move(o));
     return {shape_kind::mesh, static_cast<int>(meshes.size()) - 1};
   }
+  object_ref add(user_shape_ptr<T> s, int mat) {
+    if (!s) throw error("user shape: null");
+    const aabb_t<T> b = s->bounds();
+    if (b.empty() || !is_finite(b.lo) || !is_finite(b.hi))
+      throw error("user shape '" + s->name() + "': its bounds must be a finite, non-empty box");
+    return push(user_shapes, std::move(s), mat, shape_kind::user);
+  }
   void add(const point_light_t<T>& l) { point_lights.push_back(l); }
 
-  int material_index(object_ref o) const {
-    switch (o.kind) {
-      case shape_kind::sphere: return spheres[o.index].material;
-      case shape_kind::quad: return quads[o.index].material;
-      case shape_kind::plane: return planes[o.index].material;
-      case shape_kind::triangle: return triangles[o.index].material;
-      case shape_kind::mesh: return meshes[o.index].material;
-    }
-    return 0;
-  }
-  const material& material_of(object_ref o) const { return materials[material_index(o)]; }
+  int material_index(object_ref o) const;
+  const material& material_of(object_ref o) const { return materials[std::size_t(material_index(o))]; }
 
   // Everything but the planes, which have no bounding box.
   std::size_t bounded_count() const {
-    return spheres.size() + quads.size() + triangles.size() + meshes.size();
+    return spheres.size() + quads.size() + triangles.size() + meshes.size() + user_shapes.size();
   }
   // Builds the object BVH if there are more than `threshold` bounded objects, or drops it.
   // Call it again after adding objects; until then nearest_hit() falls back to testing all.
@@ -173,26 +148,64 @@ template <class T> struct scene_t {
     if (mat < 0 || mat >= static_cast<int>(materials.size()))
       throw error("material index " + std::to_string(mat) + " does not exist");
   }
-  object_ref note_light(object_ref o, int mat) {
-    if (materials[mat].kind == material_kind::emitter) lights.push_back(o);
-    return o;
+  template <class V, class S> object_ref push(V& v, S s, int mat, shape_kind k) {
+    check_material(mat);
+    v.push_back({std::move(s), mat});
+    return {k, static_cast<int>(v.size()) - 1};
   }
 };
 
 using scene = scene_t<double>;
 
-template <class T> struct scene_hit_t {
-  hit_t<T> h;
-  int material = -1;
-  object_ref object{shape_kind::sphere, -1};
-  std::uint32_t triangle = 0;      // meshes: the triangle hit
-  vec3_t<T> shading_normal{T(0)};  // unit, on h.normal's side; meshes interpolate vertex normals
-  // The shading normal turned to the side the ray came from, as lighting wants it.
-  vec3_t<T> facing_shading_normal() const { return h.front_face ? shading_normal : -shading_normal; }
-};
-using scene_hit = scene_hit_t<double>;
+// [listing visit-object]
+// The one place that lists the shape kinds: calls f with the object o refers to (an object_t
+// of a sphere, quad, plane, triangle or user shape, or a mesh_object_t). A new kind is one more
+// line here and an overload of intersect/bounds for its object.
+template <class T, class F> decltype(auto) visit_object(const scene_t<T>& sc, object_ref o, F&& f) {
+  const auto i = std::size_t(o.index);
+  switch (o.kind) {
+    case shape_kind::sphere: return f(sc.spheres[i]);
+    case shape_kind::quad: return f(sc.quads[i]);
+    case shape_kind::plane: return f(sc.planes[i]);
+    case shape_kind::triangle: return f(sc.triangles[i]);
+    case shape_kind::mesh: return f(sc.meshes[i]);
+    case shape_kind::user: break;
+  }
+  return f(sc.user_shapes[i]);
+}
+// Calls f(object_ref) for every object of the scene, planes first.
+template <class T, class F> void for_each_object(const scene_t<T>& sc, F&& f) {
+  auto all = [&](shape_kind k, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) f(object_ref{k, int(i)});
+  };
+  all(shape_kind::plane, sc.planes.size());
+  all(shape_kind::sphere, sc.spheres.size());
+  all(shape_kind::quad, sc.quads.size());
+  all(shape_kind::triangle, sc.triangles.size());
+  all(shape_kind::mesh, sc.meshes.size());
+  all(shape_kind::user, sc.user_shapes.size());
+}
+// [end]
+
+template <class T> int scene_t<T>::material_index(object_ref o) const {
+  return visit_object(*this, o, [](const auto& obj) { return obj.material; });
+}
+
+// ---------------------------------------------------------------- each kind's intersection and box
+// A user shape is called through its interface.
+template <class T>
+bool intersect(const user_shape_ptr<T>& s, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& h) {
+  return s->intersect(r, t_min, t_max, h);
+}
 
 namespace detail {
+
+// One object's nearest hit in (t_min, t_max); meshes also say which triangle.
+template <class S, class T>
+bool intersect_one(const object_t<S>& o, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& h,
+                   std::uint32_t&) {
+  return intersect(o.shape, r, t_min, t_max, h);
+}
 
 // A mesh hit found by the float BVH, rebuilt in T from the barycentrics: the point is
 // interpolated from the vertices, so it lies on the triangle up to T's rounding. The BVH tests
@@ -201,8 +214,8 @@ namespace detail {
 // widened to gamma<float>(64) of the vertex magnitudes (test_scene_file: spawned rays never
 // re-hit a mesh).
 template <class T>
-bool intersect_mesh(const mesh_object_t<T>& mo, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& h,
-                    std::uint32_t& triangle) {
+bool intersect_one(const mesh_object_t<T>& mo, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& h,
+                   std::uint32_t& triangle) {
   const ray_t<float> rf(vec3_t<float>(r.origin), vec3_t<float>(r.direction));
   triangle_bvh_hit th;
   if (!mo.bvh.intersect(rf, float(t_min), float(t_max), th)) return false;
@@ -217,58 +230,64 @@ bool intersect_mesh(const mesh_object_t<T>& mo, const ray_t<T>& r, T t_min, T t_
   return true;
 }
 
-template <class T>
-bool intersect_object(const scene_t<T>& sc, object_ref o, const ray_t<T>& r, T t_min, T t_max,
-                      hit_t<T>& h, std::uint32_t& triangle) {
-  switch (o.kind) {
-    case shape_kind::sphere: return intersect(sc.spheres[o.index].shape, r, t_min, t_max, h);
-    case shape_kind::quad: return intersect(sc.quads[o.index].shape, r, t_min, t_max, h);
-    case shape_kind::plane: return intersect(sc.planes[o.index].shape, r, t_min, t_max, h);
-    case shape_kind::triangle: return intersect(sc.triangles[o.index].shape, r, t_min, t_max, h);
-    case shape_kind::mesh: return intersect_mesh(sc.meshes[o.index], r, t_min, t_max, h, triangle);
-  }
-  return false;
+// Does the object block the segment (0, t_max)? Meshes skip rebuilding the hit.
+template <class S, class T> bool blocks_one(const object_t<S>& o, const ray_t<T>& r, T t_max) {
+  hit_t<T> ignored;
+  return intersect(o.shape, r, T(0), t_max, ignored);
+}
+template <class T> bool blocks_one(const mesh_object_t<T>& mo, const ray_t<T>& r, T t_max) {
+  const ray_t<float> rf(vec3_t<float>(r.origin), vec3_t<float>(r.direction));
+  return mo.bvh.occluded(rf, 0.0f, float(t_max));
 }
 
-template <class T> aabb_t<T> object_bounds(const scene_t<T>& sc, object_ref o) {
+template <class T> aabb_t<T> shape_bounds(const sphere_t<T>& s) {
+  return {s.center - vec3_t<T>(s.radius), s.center + vec3_t<T>(s.radius)};
+}
+template <class T> aabb_t<T> shape_bounds(const parallelogram_t<T>& q) {
   aabb_t<T> b;
-  T pad_gamma = gamma<T>(4);  // the intersection routines' own rounding, generously
-  switch (o.kind) {
-    case shape_kind::sphere: {
-      const auto& s = sc.spheres[o.index].shape;
-      b.grow(s.center - vec3_t<T>(s.radius));
-      b.grow(s.center + vec3_t<T>(s.radius));
-      break;
-    }
-    case shape_kind::quad: {
-      const auto& q = sc.quads[o.index].shape;
-      for (const auto& p : {q.corner, q.corner + q.u, q.corner + q.v, q.corner + q.u + q.v}) b.grow(p);
-      break;
-    }
-    case shape_kind::triangle: {
-      const auto& t = sc.triangles[o.index].shape;
-      for (const auto& p : {t.a, t.b, t.c}) b.grow(p);
-      break;
-    }
-    case shape_kind::mesh:
-      b = sc.meshes[o.index].shape.bounds();
-      pad_gamma = T(gamma<float>(4));  // the mesh is tested in float
-      break;
-    case shape_kind::plane:
-      break;
-  }
+  for (const auto& p : {q.corner, q.corner + q.u, q.corner + q.v, q.corner + q.u + q.v}) b.grow(p);
+  return b;
+}
+template <class T> aabb_t<T> shape_bounds(const triangle_t<T>& t) {
+  aabb_t<T> b;
+  for (const auto& p : {t.a, t.b, t.c}) b.grow(p);
+  return b;
+}
+template <class T> aabb_t<T> shape_bounds(const plane_t<T>&) { return {}; }  // unbounded
+template <class T> aabb_t<T> shape_bounds(const user_shape_ptr<T>& s) { return s->bounds(); }
+
+// The box padded by the intersection routines' own rounding, generously.
+template <class T> aabb_t<T> padded(const aabb_t<T>& b, T pad_gamma) {
   if (b.empty()) return b;
   const vec3_t<T> pad = pad_gamma * (glm::abs(b.lo) + glm::abs(b.hi));
   return {b.lo - pad, b.hi + pad};
+}
+template <class S, class T> aabb_t<T> bounds_one(const object_t<S>& o, T) {
+  return padded(shape_bounds(o.shape), gamma<T>(4));
+}
+template <class T> aabb_t<T> bounds_one(const mesh_object_t<T>& mo, T) {
+  return padded(mo.shape.bounds(), T(gamma<float>(4)));  // the mesh is tested in float
 }
 
 }  // namespace detail
 
 // One object's own intersection test, the building block for brute force and for a BVH.
 template <class T>
+bool intersect_object(const scene_t<T>& sc, object_ref o, const ray_t<T>& r, T t_min, T t_max,
+                      hit_t<T>& h, std::uint32_t& triangle) {
+  return visit_object(sc, o, [&](const auto& obj) { return detail::intersect_one(obj, r, t_min, t_max, h, triangle); });
+}
+template <class T>
 bool intersect_object(const scene_t<T>& sc, object_ref o, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& h) {
   std::uint32_t ignored = 0;
-  return detail::intersect_object(sc, o, r, t_min, t_max, h, ignored);
+  return intersect_object(sc, o, r, t_min, t_max, h, ignored);
+}
+template <class T> bool object_blocks(const scene_t<T>& sc, object_ref o, const ray_t<T>& r, T t_max) {
+  return visit_object(sc, o, [&](const auto& obj) { return detail::blocks_one(obj, r, t_max); });
+}
+// The object's box, padded for rounding; empty for a plane.
+template <class T> aabb_t<T> object_bounds(const scene_t<T>& sc, object_ref o) {
+  return visit_object(sc, o, [](const auto& obj) { return detail::bounds_one(obj, T(0)); });
 }
 
 template <class T> bool scene_t<T>::build_acceleration(std::size_t threshold) {
@@ -276,194 +295,14 @@ template <class T> bool scene_t<T>::build_acceleration(std::size_t threshold) {
   if (bounded_count() <= threshold) return false;
   stopwatch clock;
   std::vector<aabb_t<T>> boxes;
-  auto push = [&](shape_kind k, std::size_t n) {
-    for (std::size_t i = 0; i < n; ++i) {
-      accel.objects.push_back({k, static_cast<int>(i)});
-      boxes.push_back(detail::object_bounds(*this, accel.objects.back()));
-    }
-  };
-  push(shape_kind::sphere, spheres.size());
-  push(shape_kind::quad, quads.size());
-  push(shape_kind::triangle, triangles.size());
-  push(shape_kind::mesh, meshes.size());
+  for_each_object(*this, [&](object_ref o) {
+    if (o.kind == shape_kind::plane) return;
+    accel.objects.push_back(o);
+    boxes.push_back(object_bounds(*this, o));
+  });
   accel.tree = build_bvh(boxes);
   accel.seconds = clock.seconds();
   return true;
-}
-
-// [listing nearest-hit]
-// The nearest hit along r with t in (0, t_max): each hit found shrinks the interval, so the
-// result is the minimum over all objects whatever their order (or the BVH's).
-template <class T>
-bool nearest_hit(const scene_t<T>& sc, const ray_t<T>& r, scene_hit_t<T>& out, T t_max = infinity<T>) {
-  bool found = false;
-  auto visit = [&](object_ref o) {
-    if (!detail::intersect_object(sc, o, r, T(0), t_max, out.h, out.triangle)) return false;
-    found = true;
-    t_max = out.h.t;
-    out.object = o;
-    return true;
-  };
-  for (int i = 0; i < static_cast<int>(sc.planes.size()); ++i) visit({shape_kind::plane, i});
-  if (sc.has_object_bvh()) {
-    bvh_intersect(sc.accel.tree, r, T(0), t_max, [&](std::uint32_t i, T& tm) {
-      t_max = tm;
-      const bool hit = visit(sc.accel.objects[i]);
-      tm = t_max;
-      return hit;
-    });
-  } else {
-    for (int i = 0; i < static_cast<int>(sc.spheres.size()); ++i) visit({shape_kind::sphere, i});
-    for (int i = 0; i < static_cast<int>(sc.quads.size()); ++i) visit({shape_kind::quad, i});
-    for (int i = 0; i < static_cast<int>(sc.triangles.size()); ++i) visit({shape_kind::triangle, i});
-    for (int i = 0; i < static_cast<int>(sc.meshes.size()); ++i) visit({shape_kind::mesh, i});
-  }
-  if (!found) return false;
-  out.material = sc.material_index(out.object);
-  out.shading_normal = out.h.normal;
-  if (out.object.kind == shape_kind::mesh) {
-    const mesh_t<T>& m = sc.meshes[out.object.index].shape;
-    if (m.normals.size() == m.positions.size()) {
-      const vec3_t<T> n = m.shading_normal(out.triangle, out.h.uv.x, out.h.uv.y);
-      out.shading_normal = glm::dot(n, out.h.normal) < T(0) ? -n : n;  // on the geometric side
-    }
-  }
-  return true;
-}
-// [end]
-
-// Is anything in the way along a shadow segment (spawn.hpp)?
-template <class T> bool occluded(const scene_t<T>& sc, const segment_t<T>& s) {
-  for (const auto& o : sc.planes)
-    if (occludes(o.shape, s.ray, T(0), s.t_max)) return true;
-  auto blocks = [&](object_ref o) {
-    if (o.kind == shape_kind::mesh) {
-      const ray_t<float> rf(vec3_t<float>(s.ray.origin), vec3_t<float>(s.ray.direction));
-      return sc.meshes[o.index].bvh.occluded(rf, 0.0f, float(s.t_max));
-    }
-    hit_t<T> ignored;
-    return intersect_object(sc, o, s.ray, T(0), s.t_max, ignored);
-  };
-  if (sc.has_object_bvh())
-    return bvh_occluded(sc.accel.tree, s.ray, T(0), s.t_max,
-                        [&](std::uint32_t i) { return blocks(sc.accel.objects[i]); });
-  for (const auto& o : sc.spheres)
-    if (occludes(o.shape, s.ray, T(0), s.t_max)) return true;
-  for (const auto& o : sc.quads)
-    if (occludes(o.shape, s.ray, T(0), s.t_max)) return true;
-  for (const auto& o : sc.triangles)
-    if (occludes(o.shape, s.ray, T(0), s.t_max)) return true;
-  for (int i = 0; i < static_cast<int>(sc.meshes.size()); ++i)
-    if (blocks({shape_kind::mesh, i})) return true;
-  return false;
-}
-
-// What the scene holds and what was built for it, in one line, e.g.
-// "built: 3 spheres, 1 mesh (16384 triangles, BVH 0.02 s), 1 point light; no object BVH (4 objects)".
-template <class T> std::string describe_built(const scene_t<T>& sc) {
-  std::string out = "built:";
-  bool first = true;
-  auto item = [&](std::size_t n, const char* one, const char* many, const std::string& extra = "") {
-    if (n == 0) return;
-    out += (first ? " " : ", ") + std::to_string(n) + " " + (n == 1 ? one : many) + extra;
-    first = false;
-  };
-  item(sc.spheres.size(), "sphere", "spheres");
-  item(sc.quads.size(), "quad", "quads");
-  item(sc.planes.size(), "plane", "planes");
-  item(sc.triangles.size(), "triangle", "triangles");
-  std::size_t tris = 0;
-  double secs = 0;
-  for (const auto& m : sc.meshes) tris += m.shape.triangle_count(), secs += m.build_seconds;
-  char buf[96];
-  std::snprintf(buf, sizeof buf, " (%zu triangles, BVH %.3f s)", tris, secs);
-  item(sc.meshes.size(), "mesh", "meshes", buf);
-  item(sc.point_lights.size(), "point light", "point lights");
-  item(sc.lights.size(), "area light", "area lights");
-  if (first) out += " nothing";
-  if (sc.has_object_bvh()) {
-    std::snprintf(buf, sizeof buf, "; object BVH over %zu objects (%.3f s)", sc.accel.objects.size(),
-                  sc.accel.seconds);
-    out += buf;
-  } else {
-    out += "; no object BVH (" + std::to_string(sc.bounded_count()) + " bounded objects)";
-  }
-  return out;
-}
-
-// ---------------------------------------------------------------- lights (next-event estimation)
-template <class T> struct light_sample_t {
-  vec3_t<T> point;   // on the light
-  vec3_t<T> wi;      // unit, from the shading point towards `point`
-  T pdf;             // per steradian at the shading point, including the choice of this light
-  rgb radiance;      // emitted towards the shading point (0 from a quad light's back)
-  object_ref light;
-};
-
-// The density (per steradian) with which one light's sampler produces direction wi from x;
-// zero if wi misses it. Quads: uniform in area, converted to solid angle. Spheres: uniform in
-// the cone of directions that see the sphere (sampling.hpp).
-template <class T>
-T light_direction_pdf(const scene_t<T>& sc, object_ref l, const vec3_t<T>& x, const vec3_t<T>& wi) {
-  if (l.kind == shape_kind::sphere) {
-    const auto& s = sc.spheres[l.index].shape;
-    return cone_t<T>(x, s.center, s.radius).pdf(wi);
-  }
-  const auto& q = sc.quads[l.index].shape;
-  hit_t<T> h;
-  if (!intersect(q, ray_t<T>(x, wi), T(0), infinity<T>, h)) return T(0);
-  return area_to_solid_angle_pdf(T(1) / q.area(), h.t * h.t, glm::dot(h.normal, wi));
-}
-
-// [listing sample-light]
-// Picks one light uniformly and a point on it, seen from the shading point x. The caller tests
-// visibility with occluded(sc, spawn_segment(hit, sample.point)).
-// u_light picks the light, u the point: both uniform in [0,1) (stratified if the caller likes).
-template <class T>
-std::optional<light_sample_t<T>> sample_light(const scene_t<T>& sc, const vec3_t<T>& x, T u_light,
-                                              const vec2_t<T>& u) {
-  if (sc.lights.empty()) return std::nullopt;
-  const int n = static_cast<int>(sc.lights.size());
-  const object_ref l = sc.lights[std::clamp(static_cast<int>(u_light * T(n)), 0, n - 1)];
-  const rgb Le = sc.material_of(l).radiance;
-  light_sample_t<T> s{};
-  s.light = l;
-  if (l.kind == shape_kind::quad) {
-    const auto& q = sc.quads[l.index].shape;
-    s.point = sample_parallelogram(u, q.corner, q.u, q.v);
-    const vec3_t<T> to = s.point - x;
-    const T d2 = length2(to);
-    s.wi = normalize_or_zero(to);
-    const T cos_l = -glm::dot(q.normal(), s.wi);  // > 0: x sees the light's front
-    s.pdf = area_to_solid_angle_pdf(T(1) / q.area(), d2, cos_l) / T(n);
-    s.radiance = cos_l > T(0) ? Le : rgb(0);
-  } else {
-    const auto& sp = sc.spheres[l.index].shape;
-    const cone_t<T> cone(x, sp.center, sp.radius);
-    s.wi = cone.sample(u);
-    hit_t<T> h;  // the point where that direction meets the sphere
-    if (!intersect(sp, ray_t<T>(x, s.wi), T(0), infinity<T>, h)) return std::nullopt;
-    s.point = h.p;
-    s.pdf = cone.pdf(s.wi) / T(n);
-    s.radiance = h.front_face ? Le : rgb(0);
-  }
-  if (!(s.pdf > T(0)) || !std::isfinite(s.pdf)) return std::nullopt;
-  return s;
-}
-// [end]
-
-template <class T>
-std::optional<light_sample_t<T>> sample_light(const scene_t<T>& sc, const vec3_t<T>& x, rng& g) {
-  const T u_light = T(g.uniform());
-  return sample_light(sc, x, u_light, vec2_t<T>(g.uniform2()));
-}
-
-// The density with which sample_light() produces wi from x, summed over the lights (for MIS).
-template <class T> T light_pdf(const scene_t<T>& sc, const vec3_t<T>& x, const vec3_t<T>& wi) {
-  if (sc.lights.empty()) return T(0);
-  T sum = 0;
-  for (object_ref l : sc.lights) sum += light_direction_pdf(sc, l, x, wi);
-  return sum / T(sc.lights.size());
 }
 
 }  // namespace zraka

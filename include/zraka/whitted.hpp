@@ -19,11 +19,13 @@
 #include <zraka/bxdf.hpp>
 #include <zraka/material.hpp>
 #include <zraka/image.hpp>
+#include <zraka/lights.hpp>
 #include <zraka/optics.hpp>
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/render.hpp>
 #include <zraka/rng.hpp>
 #include <zraka/scene.hpp>
+#include <zraka/scene_query.hpp>
 #include <zraka/spawn.hpp>
 
 #include <cstdint>
@@ -61,37 +63,24 @@ rgb local_brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& n, con
 // [end]
 
 // [listing direct-light]
-// Light arriving at a diffuse hit straight from the lights, through shadow rays. A point light
-// of intensity I at distance d gives irradiance I cos / d^2; an area light is sampled at one
-// point (sample_light), its radiance weighted by 1 / pdf.
+// Light arriving at a diffuse hit straight from the lights (lights.hpp), one shadow ray each:
+// a point light of intensity I at distance d gives irradiance I cos / d^2; an area light is
+// sampled at one point, its radiance weighted by 1 / pdf.
 template <class T>
-rgb direct_light(const scene_t<T>& sc, const scene_hit_t<T>& sh, const vec3_t<T>& wo, rng& g,
-                 const whitted_options& opt, std::uint64_t& rays) {
-  const material& m = sc.materials[sh.material];
+rgb direct_light(const scene_t<T>& sc, const light_set_t<T>& lights, const scene_hit_t<T>& sh,
+                 const vec3_t<T>& wo, rng& g, const whitted_options& opt, std::uint64_t& rays) {
+  const material& m = sc.materials[std::size_t(sh.material)];
   const vec3_t<T> n = sh.facing_shading_normal();
   const vec3_t<T> ng = sh.h.facing_normal();
   rgb L(0);
-  for (const point_light_t<T>& l : sc.point_lights) {
-    const vec3_t<T> to = l.position - sh.h.p;
-    const T d2 = glm::dot(to, to);
-    const vec3_t<T> wi = normalize_or_zero(to);
-    if (!(glm::dot(wi, ng) > T(0)) || !(d2 > T(0))) continue;  // behind the surface itself
-    const rgb f = local_brdf_cos(m, sh.h, n, wo, wi, opt.model);
-    if (f == rgb(0)) continue;
-    ++rays;
-    if (!occluded(sc, spawn_segment(sh.h, l.position))) L += f * l.intensity / float(d2);
-  }
-  const int count = static_cast<int>(sc.lights.size());
-  for (int k = 0; k < count; ++k) {  // one sample on every area light
-    const T u_light = (T(k) + T(0.5)) / T(count);
-    const auto ls = sample_light(sc, sh.h.p, u_light, vec2_t<T>(g.uniform2()));
-    if (!ls || ls->radiance == rgb(0) || !(glm::dot(ls->wi, ng) > T(0))) continue;
+  for (int k = 0; k < int(lights.size()); ++k) {  // every light, not one chosen at random
+    const vec2_t<T> u(g.uniform2());
+    const auto ls = lights.sample_one(k, sh.h, u);
+    if (!ls || ls->Le == rgb(0) || !(glm::dot(ls->wi, ng) > T(0))) continue;  // behind the surface
     const rgb f = local_brdf_cos(m, sh.h, n, wo, ls->wi, opt.model);
     if (f == rgb(0)) continue;
     ++rays;
-    // sample_light's pdf includes the 1/count of choosing this light; we chose every light.
-    if (!occluded(sc, spawn_segment(sh.h, ls->point)))
-      L += f * ls->radiance / float(ls->pdf * T(count));
+    if (!occluded(sc, ls->shadow)) L += f * ls->Le / float(ls->pdf);
   }
   return L;
 }
@@ -101,19 +90,19 @@ rgb direct_light(const scene_t<T>& sc, const scene_hit_t<T>& sh, const vec3_t<T>
 // The colour seen along r; depth counts the bounces above it, weight what its colour is
 // multiplied by at the camera.
 template <class T>
-rgb whitted_radiance(const scene_t<T>& sc, const ray_t<T>& r, rng& g, const whitted_options& opt,
-                     std::uint64_t& rays, int depth = 0, float weight = 1.0f) {
+rgb whitted_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, const ray_t<T>& r, rng& g,
+                     const whitted_options& opt, std::uint64_t& rays, int depth = 0, float weight = 1.0f) {
   scene_hit_t<T> sh;
   ++rays;
   if (!nearest_hit(sc, r, sh)) return sc.background;  // the nearest, not the first in the list
-  const material& m = sc.materials[sh.material];
+  const material& m = sc.materials[std::size_t(sh.material)];
   const hit_t<T>& h = sh.h;
   const vec3_t<T> wo = -r.direction;
   // A secondary ray, if the tree may grow and the branch still matters.
   auto trace = [&](const vec3_t<T>& dir, rgb w) {
     const float bw = weight * max_component(w);
     if (depth >= opt.max_depth || !(bw >= opt.min_weight)) return rgb(0);
-    return w * whitted_radiance(sc, spawn_ray(h, dir), g, opt, rays, depth + 1, bw);
+    return w * whitted_radiance(sc, lights, spawn_ray(h, dir), g, opt, rays, depth + 1, bw);
   };
   // Directions bend around the shading normal (smooth on meshes); one that would cross the
   // geometric surface (possible where the two normals differ) falls back to the geometric one.
@@ -124,7 +113,7 @@ rgb whitted_radiance(const scene_t<T>& sc, const ray_t<T>& r, rng& g, const whit
       return emitted(m, h);
     case material_kind::lambertian:
     case material_kind::phong: {
-      rgb c = direct_light(sc, sh, wo, g, opt, rays) + sc.ambient * diffuse_colour(m, h);
+      rgb c = emitted(m, h) + direct_light(sc, lights, sh, wo, g, opt, rays) + sc.ambient * diffuse_colour(m, h);
       if (m.kind == material_kind::phong && m.ks != rgb(0)) {
         const vec3_t<T> w = reflect(r.direction, ns);
         c += trace(outside(w) ? w : reflect(r.direction, ng), m.ks);
@@ -156,6 +145,17 @@ rgb whitted_radiance(const scene_t<T>& sc, const ray_t<T>& r, rng& g, const whit
 }
 // [end]
 
+// Whitted's local model knows the built-in materials only: a custom BSDF used by an object is
+// refused by name rather than drawn as something else.
+template <class T> void check_whitted_scene(const scene_t<T>& sc) {
+  for_each_object(sc, [&](object_ref o) {
+    const material& m = sc.material_of(o);
+    if (is_custom(m))
+      throw error("whitted: material " + std::to_string(sc.material_index(o)) + " is a custom BSDF ('" +
+                  m.bsdf->name() + "'), which the Whitted ray tracer cannot shade; render it with pathtrace");
+  });
+}
+
 // [listing render-whitted]
 // The whole image on all cores (render.hpp): spp stratified samples per pixel (one sample: the
 // pixel centre), each with its own random stream, so the image is the same for any thread count.
@@ -164,12 +164,14 @@ render_stats render_whitted(const scene_t<T>& sc, image& img, const whitted_opti
                             const render_options& ro = {}) {
   if (img.width != sc.settings.width || img.height != sc.settings.height)
     throw error("render_whitted: the image size differs from the scene's settings");
+  check_whitted_scene(sc);
+  const light_set_t<T> lights(sc);
   const auto cam = sc.prepared_camera();
   return render(img, sc.settings.spp, sc.settings.seed, [&](sample_context& c) {
     const vec2 o = c.spp == 1 ? vec2(0.5) : pixel_sample(pixel_pattern::stratified, c.sample, c.spp, c.random);
     const vec2 lens = sc.camera.aperture > 0 ? c.random.uniform2() : vec2(0);
     const ray_t<T> r = cam.generate(T((c.x + o.x) / img.width), T((c.y + o.y) / img.height), T(lens.x), T(lens.y));
-    return whitted_radiance(sc, r, c.random, opt, c.rays);
+    return whitted_radiance(sc, lights, r, c.random, opt, c.rays);
   }, ro);
 }
 // [end]

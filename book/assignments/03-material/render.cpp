@@ -7,7 +7,7 @@
 #include <zraka/cornell.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image_io.hpp>
-#include <zraka/integrators.hpp>
+#include <zraka/path.hpp>
 #include <zraka/render.hpp>
 #include <zraka/stopwatch.hpp>
 
@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
         material::custom(std::make_shared<course::oren_nayar>(vec3(0.8), 0.0));
     sc.materials[std::size_t(sc.spheres[1].material)] =
         material::custom(std::make_shared<course::oren_nayar>(vec3(0.8), sigma));
-    integrator_options o;
+    path_options o;
     o.method = integrator::mis;
     const path_tracer tracer(sc, o);
     const auto cam = sc.prepared_camera();

@@ -3,7 +3,7 @@
 // solution/oren_nayar.hpp (must pass).
 #include "oren_nayar.hpp"
 
-#include <zraka/integrators.hpp>
+#include <zraka/path.hpp>
 #include <zraka/material.hpp>
 #include <zraka/rng.hpp>
 #include <zraka/testing.hpp>
@@ -21,6 +21,7 @@ namespace zt = zraka::testing;
 namespace {
 
 const vec3 up(0, 0, 1);  // the normal of the local frame
+const bsdf_frame F = bsdf_frame::around(vec3(0), vec2(0), up, true);  // the frame around it
 
 vec3 at_angle(double theta_degrees) {
   const double t = theta_degrees * pi<double> / 180;
@@ -31,7 +32,7 @@ vec3 at_angle(double theta_degrees) {
 // the red channel (rho = 1), by the midpoint rule on 100 x 32 bins (x 64 points each).
 double albedo(const oren_nayar& f, const vec3& wo) {
   return zt::pdf_integral_over_directions(
-      [&](const vec3& wi) { return f.eval(wo, wi, up).x * std::max(0.0, wi.z); }, 100, 32, 0.0);
+      [&](const vec3& wi) { return f.eval(F, wo, wi).x * std::max(0.0, wi.z); }, 100, 32, 0.0);
 }
 
 double A_of(double sigma) { return 1 - sigma * sigma / (2 * (sigma * sigma + 0.33)); }
@@ -49,7 +50,7 @@ TEST_CASE("oren-nayar: white furnace on the BRDF, sigma = 0 is Lambert and loses
     const double a = albedo(f, at_angle(t));
     CHECK_MESSAGE(std::abs(a - 1) < 1e-3, "theta_o " << t << " deg: albedo " << a << ", expected 1");
   }
-  CHECK_MESSAGE(f.eval(at_angle(40), at_angle(-70), up).x == doctest::Approx(1 / pi<double>),
+  CHECK_MESSAGE(f.eval(F, at_angle(40), at_angle(-70)).x == doctest::Approx(1 / pi<double>),
                 "f must be rho/pi for sigma = 0");
 }
 
@@ -99,18 +100,18 @@ TEST_CASE("oren-nayar: sample() follows pdf() (chi-square), and weight = f cos /
       const vec3 wo = at_angle(t);
       const auto r = zt::directions_follow_pdf(
           [&]() -> std::optional<vec3> {
-            const auto s = f.sample(wo, up, g.uniform2());
+            const auto s = f.sample(F, wo, vec3(g.uniform2(), g.uniform()));
             return s ? std::optional<vec3>(s->wi) : std::nullopt;
           },
-          [&](const vec3& wi) { return f.pdf(wo, wi, up); }, 50000, direction_grid(16, 16),
+          [&](const vec3& wi) { return f.pdf(F, wo, wi); }, 50000, direction_grid(16, 16),
           sidak_level(0.01, 4));
       CHECK_MESSAGE(r.ok, "sigma " << sigma << ", theta_o " << t << ": " << r.message);
       // The weight is f cos / pdf (1e-9 relative: a few double roundings).
       int bad = 0;
       for (int i = 0; i < 1000; ++i) {
-        const auto s = f.sample(wo, up, g.uniform2());
+        const auto s = f.sample(F, wo, vec3(g.uniform2(), g.uniform()));
         if (!s) { ++bad; continue; }
-        const vec3 expected = f.eval(wo, s->wi, up) * s->wi.z / s->pdf;
+        const vec3 expected = f.eval(F, wo, s->wi) * s->wi.z / s->pdf;
         if (!(s->pdf > 0) || glm::length(s->weight - expected) > 1e-9 * (1 + glm::length(expected))) ++bad;
       }
       CHECK_MESSAGE(bad == 0, "sigma " << sigma << ", theta_o " << t << ": " << bad
@@ -128,19 +129,19 @@ TEST_CASE("oren-nayar: no NaN or infinity at grazing angles and at the normal") 
   rng g(3);
   for (const vec3& wo : dirs)
     for (const vec3& wi : dirs) {
-      const vec3 v = f.eval(wo, wi, up);
+      const vec3 v = f.eval(F, wo, wi);
       CHECK_MESSAGE(is_finite(v), "eval(" << wo.x << "," << wo.y << "," << wo.z << " ; " << wi.x
                     << "," << wi.y << "," << wi.z << ") is not finite");
       CHECK(v.x >= 0);
-      CHECK(std::isfinite(f.pdf(wo, wi, up)));
+      CHECK(std::isfinite(f.pdf(F, wo, wi)));
       if (wo.z > 0)
         for (int i = 0; i < 100; ++i)
-          if (const auto s = f.sample(wo, up, g.uniform2()))
+          if (const auto s = f.sample(F, wo, vec3(g.uniform2(), g.uniform())))
             CHECK_MESSAGE(is_finite(s->weight), "sample weight not finite at wo.z = " << wo.z);
     }
   // A f cos bounded by rho/pi (A + B) at the worst grazing pair.
   const vec3 graze = at_angle(89.999999);
-  CHECK(f.eval(graze, graze, up).x * graze.z <= (A_of(1) + B_of(1)) / pi<double> + 1e-12);
+  CHECK(f.eval(F, graze, graze).x * graze.z <= (A_of(1) + B_of(1)) / pi<double> + 1e-12);
 }
 
 namespace {
@@ -158,7 +159,7 @@ scene furnace(std::shared_ptr<const custom_bsdf> f) {
 }
 
 estimator furnace_estimate(const scene& sc, integrator method) {
-  integrator_options o;
+  path_options o;
   o.method = method;
   o.max_depth = 40;  // the tail a^41 is 5e-13 for a = 1/2
   const path_tracer tracer(sc, o);

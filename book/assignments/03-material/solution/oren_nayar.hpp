@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 namespace course {
 
@@ -22,7 +23,11 @@ struct oren_nayar final : zraka::custom_bsdf {
 
   oren_nayar(zraka::vec3 rho_, double sigma_) : rho(rho_), sigma(sigma_) {}
 
-  zraka::vec3 eval(const zraka::vec3& wo, const zraka::vec3& wi, const zraka::vec3& n) const override {
+  std::string name() const override { return "oren_nayar"; }
+
+  // The shading frame f gives the normal n = f.n (on the side of wo).
+  zraka::vec3 eval(const zraka::bsdf_frame& f, const zraka::vec3& wo, const zraka::vec3& wi) const override {
+    const zraka::vec3& n = f.n;
     const double cos_i = glm::dot(wi, n), cos_o = glm::dot(wo, n);
     if (!(cos_i > 0) || !(cos_o > 0)) return zraka::vec3(0);  // a BRDF reflects only
     const double s2 = sigma * sigma;
@@ -39,16 +44,18 @@ struct oren_nayar final : zraka::custom_bsdf {
     return rho / zraka::pi<double> * (A + B * std::max(0.0, cos_phi) * sin_a_tan_b);
   }
 
-  double pdf(const zraka::vec3& wo, const zraka::vec3& wi, const zraka::vec3& n) const override {
+  double pdf(const zraka::bsdf_frame& f, const zraka::vec3& wo, const zraka::vec3& wi) const override {
+    const zraka::vec3& n = f.n;
     if (!(glm::dot(wo, n) > 0)) return 0;
     return std::max(0.0, glm::dot(wi, n)) / zraka::pi<double>;
   }
 
-  std::optional<zraka::custom_sample> sample(const zraka::vec3& wo, const zraka::vec3& n,
-                                             const zraka::vec2& u) const override {
+  std::optional<zraka::custom_sample> sample(const zraka::bsdf_frame& f, const zraka::vec3& wo,
+                                             const zraka::vec3& u) const override {
+    const zraka::vec3& n = f.n;
     if (!(glm::dot(wo, n) > 0)) return std::nullopt;
-    const zraka::vec3 wi = zraka::onb(n).to_world(zraka::sample_cosine_hemisphere(u));
-    const double p = pdf(wo, wi, n);
+    const zraka::vec3 wi = f.to_world(zraka::sample_cosine_hemisphere(zraka::vec2(u)));
+    const double p = pdf(f, wo, wi);
     if (!(p > 0)) return std::nullopt;  // rounding put wi on the horizon
     // f cos / pdf = f cos / (cos / pi) = pi f: the cosine cancels exactly.
     return zraka::custom_sample{wi, zraka::pi<double> * eval(wo, wi, n), p};

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 namespace course {
 
@@ -22,21 +23,27 @@ struct oren_nayar final : zraka::custom_bsdf {
 
   oren_nayar(zraka::vec3 rho_, double sigma_) : rho(rho_), sigma(sigma_) {}
 
+  std::string name() const override { return "oren_nayar"; }
+
   // f(wo, wi) per channel, in 1/sr; zero unless both wo and wi are above the surface.
-  zraka::vec3 eval(const zraka::vec3& wo, const zraka::vec3& wi, const zraka::vec3& n) const override {
+  // The shading frame f gives the normal n = f.n (on the side of wo).
+  zraka::vec3 eval(const zraka::bsdf_frame& f, const zraka::vec3& wo, const zraka::vec3& wi) const override {
+    const zraka::vec3& n = f.n;
     (void)wo, (void)wi, (void)n;
     return zraka::vec3(0);  // TODO
   }
 
   // The density sample() draws wi with, per steradian.
-  double pdf(const zraka::vec3& wo, const zraka::vec3& wi, const zraka::vec3& n) const override {
+  double pdf(const zraka::bsdf_frame& f, const zraka::vec3& wo, const zraka::vec3& wi) const override {
+    const zraka::vec3& n = f.n;
     (void)wo, (void)wi, (void)n;
     return 0;  // TODO
   }
 
   // A direction wi, its weight f cos / pdf and its pdf; none when wo is below the surface.
-  std::optional<zraka::custom_sample> sample(const zraka::vec3& wo, const zraka::vec3& n,
-                                             const zraka::vec2& u) const override {
+  std::optional<zraka::custom_sample> sample(const zraka::bsdf_frame& f, const zraka::vec3& wo,
+                                             const zraka::vec3& u) const override {
+    const zraka::vec3& n = f.n;
     (void)wo, (void)u;
     return zraka::custom_sample{n, zraka::vec3(0), 0};  // TODO
   }

@@ -1,0 +1,302 @@
+#pragma once
+// The lights of a scene, written once for every renderer (book 2.2, 2.3, 5.3): which objects
+// are lights, how one is chosen, how a point on it is sampled, and the density of that choice.
+//
+// A light is every object whose material emits (material.hpp: an emitter, or any glowing
+// surface; two-sided ones from both faces) and every point light. Each is sampled as seen from a
+// shading point x, and the density is per steradian at x:
+//   sphere     uniform in the cone of directions that see it; from inside, every direction
+//              (each meets the sphere once), so a glowing room works;
+//   quad, triangle, user shape with area sampling
+//              uniform in area, p_A = 1/A, turned into solid angle: p = p_A d^2 / |cos theta_l|;
+//   mesh       a triangle chosen by area, then uniform on it: again p_A = 1/A of the whole mesh;
+//   point      one direction: a delta, pdf 1 (times the choice), Le = I / d^2.
+// Emission that cannot be sampled is counted only where a ray finds it ("hit only"): an
+// infinite plane (no finite area to pick a point on), a user shape that gives no area sampling,
+// and the background. describe() names them, so the choice is never silent.
+//
+// Lights are chosen in proportion to their power (emitted flux: mean radiance x area x pi, twice
+// that when two-sided; 4 pi I for a point light), or uniformly (light_selection::uniform, for
+// comparison: bench/pathtrace_bench measures what choosing by power buys).
+#include <zraka/sampling.hpp>
+#include <zraka/scene.hpp>
+#include <zraka/spawn.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace zraka {
+
+enum class light_selection { power, uniform };
+
+template <class T> struct light_sample_t {
+  vec3_t<T> point{T(0)};  // on the light
+  vec3_t<T> wi{T(0)};     // unit, from the shading point towards it
+  T pdf = T(0);           // per steradian (a point light: 1), times the choice of the light if chosen
+  rgb Le{0};              // arriving from the light (0 from a one-sided light's back; point: I/d^2)
+  bool delta = false;     // a point light: no other technique can find it
+  segment_t<T> shadow;    // the light is seen if occluded(scene, shadow) is false
+  int light = -1;         // index in the light set
+};
+
+template <class T> class light_set_t {
+ public:
+  struct light {
+    object_ref object{shape_kind::sphere, -1};  // an area light; index -1 for a point light
+    int point = -1;                             // a point light: index in scene.point_lights
+    double power = 0;                           // emitted flux (mean over the channels)
+    T area = T(0);                              // area lights
+    std::uint32_t first = 0, count = 0;         // meshes: their triangles' range in the area table
+  };
+
+  explicit light_set_t(const scene_t<T>& sc, light_selection sel = light_selection::power)
+      : sc_(sc), selection_(sel) {
+    for (auto& v : index_) v.clear();
+    index_[kind(shape_kind::sphere)].assign(sc.spheres.size(), -1);
+    index_[kind(shape_kind::quad)].assign(sc.quads.size(), -1);
+    index_[kind(shape_kind::plane)].assign(sc.planes.size(), -1);
+    index_[kind(shape_kind::triangle)].assign(sc.triangles.size(), -1);
+    index_[kind(shape_kind::mesh)].assign(sc.meshes.size(), -1);
+    index_[kind(shape_kind::user)].assign(sc.user_shapes.size(), -1);
+    for_each_object(sc, [&](object_ref o) { add_object(o); });
+    for (std::size_t i = 0; i < sc.point_lights.size(); ++i) {
+      light l;
+      l.point = int(i);
+      l.power = 4.0 * pi<double> * mean(sc.point_lights[i].intensity);
+      if (l.power > 0) lights_.push_back(l);
+    }
+    double total = 0;
+    cdf_.assign(1, 0.0);
+    for (const light& l : lights_) cdf_.push_back(total += weight(l));
+    total_ = total;
+  }
+
+  std::size_t size() const { return lights_.size(); }
+  bool empty() const { return lights_.empty(); }
+  const std::vector<light>& lights() const { return lights_; }
+  light_selection selection() const { return selection_; }
+  // Emitters that are counted only when a ray hits them (see the top of this file).
+  const std::vector<std::string>& hit_only() const { return hit_only_; }
+
+  // The probability of choosing light i.
+  T selection_pdf(int i) const { return T(weight(lights_[std::size_t(i)]) / total_); }
+  // The light index of an object, or -1 if the object is not a sampled light.
+  int index_of(object_ref o) const {
+    if (o.index < 0) return -1;
+    const auto& v = index_[kind(o.kind)];
+    return std::size_t(o.index) < v.size() ? v[std::size_t(o.index)] : -1;
+  }
+
+  // [listing sample-light]
+  // One light chosen by u_select (by power or uniformly), one point on it by u, seen from hit h
+  // (a point with p_error 0 and no normal will do). pdf includes the choice.
+  std::optional<light_sample_t<T>> sample(const hit_t<T>& h, T u_select, const vec2_t<T>& u) const {
+    if (lights_.empty()) return std::nullopt;
+    const double x = double(clamp_unit(u_select)) * total_;
+    const auto it = std::upper_bound(cdf_.begin() + 1, cdf_.end(), x);
+    const int i = std::min(int(it - cdf_.begin()) - 1, int(lights_.size()) - 1);
+    auto s = sample_one(i, h, u);
+    if (!s) return s;
+    s->pdf *= selection_pdf(i);
+    if (!(s->pdf > T(0)) || !std::isfinite(s->pdf)) return std::nullopt;
+    return s;
+  }
+  // [end]
+
+  // [listing sample-one-light]
+  // A point on light i, seen from hit h; pdf without the choice of the light (Whitted samples
+  // every light).
+  std::optional<light_sample_t<T>> sample_one(int i, const hit_t<T>& h, const vec2_t<T>& u) const {
+    const light& l = lights_[std::size_t(i)];
+    light_sample_t<T> s;
+    s.light = i;
+    if (l.point >= 0) {  // one direction; its "density" is a delta, reported as 1
+      const auto& pl = sc_.point_lights[std::size_t(l.point)];
+      const vec3_t<T> to = pl.position - h.p;
+      s.point = pl.position;
+      s.wi = normalize_or_zero(to);
+      s.pdf = T(1);
+      s.Le = pl.intensity / float(length2(to));
+      s.delta = true;
+      s.shadow = spawn_segment(h, s.point);
+      if (s.wi == vec3_t<T>(0) || !is_finite(s.Le)) return std::nullopt;
+      return s;
+    }
+    const material& m = sc_.material_of(l.object);
+    hit_t<T> lh;  // the light's surface at the sampled point: its side decides what it emits
+    if (l.object.kind == shape_kind::sphere) {
+      const sphere_t<T>& sp = sc_.spheres[std::size_t(l.object.index)].shape;
+      const cone_t<T> cone(h.p, sp.center, sp.radius);  // every direction from inside
+      s.wi = cone.sample(u);
+      const ray_t<T> r = spawn_ray(h, s.wi);
+      if (!intersect(sp, r, T(0), infinity<T>, lh)) return std::nullopt;
+      s.point = lh.p;
+      // The shadow ray is the ray that found the point, stopped just short of it: the same
+      // arithmetic cannot find the sphere again before lh.t (a segment to the rounded point
+      // could, on a glowing sphere seen from its own inside).
+      s.shadow = {r, lh.t * (T(1) - gamma<T>(16))};
+      s.pdf = cone.pdf(s.wi);
+    } else {
+      const auto sp = sample_surface(l, u);
+      if (!sp) return std::nullopt;
+      const vec3_t<T> to = sp->p - h.p;
+      s.point = sp->p;
+      s.wi = normalize_or_zero(to);
+      lh.normal = sp->normal;
+      lh.set_face(s.wi);
+      const T cos_l = std::abs(glm::dot(sp->normal, s.wi));
+      s.pdf = area_to_solid_angle_pdf(T(1) / l.area, length2(to), cos_l);
+      s.shadow = spawn_segment(h, s.point);
+      // Stop short of the light's own surface by its rounding too, measured along the ray:
+      // meshes are tested in float, so a float hit on the light itself may come a little early.
+      s.shadow.t_max -= glm::dot(glm::abs(sp->normal), sp->p_error) / std::max(cos_l, T(1e-30));
+    }
+    s.Le = emitted(m, lh);
+    if (!(s.pdf > T(0)) || !std::isfinite(s.pdf) || s.wi == vec3_t<T>(0)) return std::nullopt;
+    return s;
+  }
+  // [end]
+
+  // [listing light-pdf]
+  // The density with which sample() produces direction wi from x, given that the ray along wi
+  // first meets object o at lh (a BSDF-sampled ray that found a light): 0 if o is not sampled.
+  T pdf(object_ref o, const vec3_t<T>& x, const vec3_t<T>& wi, const hit_t<T>& lh) const {
+    const int i = index_of(o);
+    if (i < 0) return T(0);
+    const light& l = lights_[std::size_t(i)];
+    if (o.kind == shape_kind::sphere) {
+      const sphere_t<T>& sp = sc_.spheres[std::size_t(o.index)].shape;
+      return cone_t<T>(x, sp.center, sp.radius).pdf(wi) * selection_pdf(i);
+    }
+    return area_to_solid_angle_pdf(T(1) / l.area, lh.t * lh.t, glm::dot(lh.normal, wi)) * selection_pdf(i);
+  }
+  // [end]
+
+  // "lights: 2 (1 quad, 1 point light), chosen by power; hit only: plane 0"
+  std::string describe() const {
+    std::array<int, 6> per_kind{};
+    int points = 0;
+    for (const light& l : lights_)
+      if (l.point >= 0) ++points;
+      else ++per_kind[kind(l.object.kind)];
+    static const char* names[] = {"sphere", "quad", "plane", "triangle", "mesh", "user shape"};
+    std::string out = "lights: " + std::to_string(lights_.size());
+    std::string parts;
+    auto part = [&](int n, const std::string& what) {
+      if (n == 0) return;
+      parts += (parts.empty() ? "" : ", ") + std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+    };
+    for (int k = 0; k < 6; ++k) part(per_kind[std::size_t(k)], names[k]);
+    part(points, "point light");
+    if (!parts.empty()) out += " (" + parts + ")";
+    out += selection_ == light_selection::power ? ", chosen by power" : ", chosen uniformly";
+    if (!hit_only_.empty()) {
+      out += "; hit only:";
+      for (std::size_t i = 0; i < hit_only_.size(); ++i) out += (i ? ", " : " ") + hit_only_[i];
+    }
+    return out;
+  }
+
+ private:
+  static std::size_t kind(shape_kind k) { return std::size_t(k); }
+  static double mean(const rgb& c) { return (double(c.x) + double(c.y) + double(c.z)) / 3.0; }
+  double weight(const light& l) const { return selection_ == light_selection::power ? l.power : 1.0; }
+
+  void add_object(object_ref o) {
+    const material& m = sc_.material_of(o);
+    if (!emits(m)) return;
+    light l;
+    l.object = o;
+    switch (o.kind) {
+      case shape_kind::sphere: {
+        const T r = sc_.spheres[std::size_t(o.index)].shape.radius;
+        l.area = T(4) * pi<T> * r * r;
+        break;
+      }
+      case shape_kind::quad: l.area = sc_.quads[std::size_t(o.index)].shape.area(); break;
+      case shape_kind::triangle: l.area = sc_.triangles[std::size_t(o.index)].shape.area(); break;
+      case shape_kind::mesh: {
+        const mesh_t<T>& mesh = sc_.meshes[std::size_t(o.index)].shape;
+        l.first = std::uint32_t(triangle_cdf_.size());
+        l.count = std::uint32_t(mesh.triangle_count());
+        double a = 0;
+        for (std::size_t k = 0; k < mesh.triangle_count(); ++k) {
+          triangle_cdf_.push_back(a);
+          a += double(mesh.triangle(k).area());
+        }
+        triangle_cdf_.push_back(a);
+        l.area = T(a);
+        break;
+      }
+      case shape_kind::user: {
+        const auto& us = *sc_.user_shapes[std::size_t(o.index)].shape;
+        l.area = us.area();
+        if (!(l.area > T(0))) {
+          hit_only_.push_back("user shape '" + us.name() + "' " + std::to_string(o.index) + " (no area sampling)");
+          return;
+        }
+        break;
+      }
+      case shape_kind::plane:
+        hit_only_.push_back("plane " + std::to_string(o.index) + " (infinite)");
+        return;
+    }
+    if (!(l.area > T(0)) || !std::isfinite(l.area)) return;  // degenerate: never hit either
+    l.power = mean(m.radiance) * double(l.area) * pi<double> * (m.two_sided ? 2.0 : 1.0);
+    index_[kind(o.kind)][std::size_t(o.index)] = int(lights_.size());
+    lights_.push_back(l);
+  }
+
+  // A point uniform in area on light l (not a sphere, not a point light).
+  std::optional<surface_point_t<T>> sample_surface(const light& l, const vec2_t<T>& u) const {
+    const auto i = std::size_t(l.object.index);
+    switch (l.object.kind) {
+      case shape_kind::quad: {
+        const auto& q = sc_.quads[i].shape;
+        const T a = clamp_unit(u.x), b = clamp_unit(u.y);
+        return surface_point_t<T>{q.point(a, b), q.normal(),
+                                  gamma<T>(4) * (glm::abs(q.corner) + glm::abs(a * q.u) + glm::abs(b * q.v))};
+      }
+      case shape_kind::triangle: return on_triangle(sc_.triangles[i].shape, u, gamma<T>(7));
+      case shape_kind::mesh: {
+        // The triangle by area: u.x picks it, and is stretched back to [0,1) inside it.
+        const double* c = triangle_cdf_.data() + l.first;
+        const double x = double(clamp_unit(u.x)) * c[l.count];
+        const std::uint32_t k = std::min<std::uint32_t>(
+            std::uint32_t(std::upper_bound(c + 1, c + l.count + 1, x) - (c + 1)), l.count - 1);
+        const double width = c[k + 1] - c[k];
+        const T ux = width > 0 ? clamp_unit(T((x - c[k]) / width)) : T(0);
+        const auto& mesh = sc_.meshes[i].shape;
+        // The mesh is tested in float: its hits are as uncertain as scene.hpp's mesh hits.
+        return on_triangle(mesh.triangle(k), vec2_t<T>(ux, u.y), T(gamma<float>(64)));
+      }
+      case shape_kind::user: return sc_.user_shapes[i].shape->sample_area(u);
+      case shape_kind::sphere:
+      case shape_kind::plane: break;
+    }
+    return std::nullopt;
+  }
+  static std::optional<surface_point_t<T>> on_triangle(const triangle_t<T>& t, const vec2_t<T>& u, T g) {
+    const vec2_t<T> b = sample_triangle_barycentric(u);
+    const T w = T(1) - b.x - b.y;
+    const vec3_t<T> p = w * t.a + b.x * t.b + b.y * t.c;
+    return surface_point_t<T>{p, t.normal(), g * (glm::abs(w * t.a) + glm::abs(b.x * t.b) + glm::abs(b.y * t.c))};
+  }
+
+  const scene_t<T>& sc_;
+  light_selection selection_;
+  std::vector<light> lights_;
+  std::vector<double> cdf_;           // selection weights, summed: cdf_[i + 1] - cdf_[i] = weight(i)
+  double total_ = 0;
+  std::vector<double> triangle_cdf_;  // meshes: their triangles' areas, summed (count + 1 entries each)
+  std::array<std::vector<int>, 6> index_;  // per shape kind: object index -> light index, or -1
+  std::vector<std::string> hit_only_;
+};
+
+using light_set = light_set_t<double>;
+
+}  // namespace zraka
