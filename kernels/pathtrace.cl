@@ -438,6 +438,7 @@ bool scatter(global const material_t* m, float3 d, const hit_t* h, stream_t* g, 
   if (m->kind == KIND_EMITTER) return false;
   // Lambertian, cosine-weighted: f cos / pdf = albedo (errata C1, C6)
   const float u0 = clamp_unit(uniform(g)), u1 = clamp_unit(uniform(g));
+  uniform(g);  // material.hpp draws a third number (a lobe) for every surface with a density
   if (!(dot(-d, n) > 0.0f)) return false;
   const float r = sqrt(u0), phi = 2.0f * PI_F * u1;
   *wi = to_world(n, (float3)(r * cos(phi), r * sin(phi), sqrt(1.0f - u0)));
