@@ -1,7 +1,7 @@
 // The triangle BVH (triangle_bvh.hpp): its memory (4-wide nodes of 128 bytes, 32 per child;
 // 40-byte triangles; at most 80 bytes per triangle on the teapot), and hits identical to brute force (same t, same triangle,
 // same barycentrics, bit for bit) for nearest and any hit, against two references: its own brute
-// force loop and triangle.hpp's intersect_moller_trumbore() over the input in index order. On
+// force loop and triangle.hpp's intersect_watertight() over the input in index order. On
 // random soups, the teapot at several divs, axis-aligned rays, rays from inside, no triangles,
 // one triangle, identical centroids, degenerate triangles and NaN rays.
 #include <zraka/bpt.hpp>
@@ -30,13 +30,13 @@ vec3f random_in(rng& g, const aabb_t<float>& b) {
   return b.lo + vec3f(vec3(g.uniform(), g.uniform(), g.uniform())) * (b.hi - b.lo);
 }
 
-// The independent reference: triangle.hpp's Moller-Trumbore over every input triangle in index
+// The independent reference: triangle.hpp's watertight test over every input triangle in index
 // order; strict t < t_max, so among exact ties the lowest index stays.
 triangle_bvh_hit reference(const std::vector<tri_f>& tris, const rayf& r, float t_max) {
   triangle_bvh_hit best;
   for (std::size_t i = 0; i < tris.size(); ++i) {
     hit_t<float> h;
-    if (intersect_moller_trumbore(tris[i], r, 0.0f, t_max, h)) {
+    if (intersect_watertight(tris[i], r, 0.0f, t_max, h)) {
       t_max = h.t;
       best = {h.t, h.uv.x, h.uv.y, std::uint32_t(i)};
     }
