@@ -216,6 +216,7 @@ bool hit_plane(const plane_t pl, float3 o, float3 D, float t_max, hit_t* h) {
 // [listing cl-bvh]
 // triangle_bvh.hpp's walk: a stack of (child, count, entry t), nearest child on top.
 #define STACK_SIZE 196
+#define CULL_MARGIN (1.0f + 0x1p-18f)
 typedef struct { uint child, count; float t_enter; } entry_t;
 
 // Slab test of a node's four boxes; returns a mask of the boxes hit and their entry t.
@@ -345,7 +346,7 @@ bool hit_bvh(const scene_t* sc, float3 o, float3 D, float t_max, hit_t* h) {
   uint best_id = 0xffffffffu, best_leaf = 0;
   while (top > 0) {
     const entry_t e = stack[--top];
-    if (e.t_enter > t_max) continue;
+    if (e.t_enter > t_max * CULL_MARGIN) continue;  // triangle_bvh::cull_margin
     if (e.count) {
       for (uint k = 0; k < e.count; ++k)
         if (test_triangle(&sc->tris[e.child + k], &wr, t_max, &best_t, &best_id, &bu, &bv)) {
@@ -358,7 +359,7 @@ bool hit_bvh(const scene_t* sc, float3 o, float3 D, float t_max, hit_t* h) {
     }
     global const node4_t* n = &sc->nodes[e.child];
     float t[4];
-    uint mask = hit_boxes(n, o, inv, t_max, t);
+    uint mask = hit_boxes(n, o, inv, t_max * CULL_MARGIN, t);
     const int first = top;
     for (int k = 0; k < 4 && top < STACK_SIZE; ++k) {
       if (!(mask & (1u << k))) continue;

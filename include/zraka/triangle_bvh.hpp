@@ -287,6 +287,11 @@ class triangle_bvh {
     float t_enter;
   };
   static constexpr int stack_size = 3 * bvh_max_depth + 4;  // at most 3 left behind per level
+  // A box's entry t and a triangle's t round differently: a triangle on a box face (a shared
+  // edge of two leaves, say) may hit at a t an ulp or two below the box's entry. So a box is
+  // passed over only when it starts more than 32 ulps beyond the best hit, and a tie at equal
+  // t (won by the lower index) or a hit an ulp nearer is never lost to the order of the walk.
+  static constexpr float cull_margin = 1.0f + 0x1p-18f;
 
   // [listing triangle-traverse]
   // Pop the nearest entry; skip it if a hit is already nearer than its box; test a leaf's
@@ -301,7 +306,7 @@ class triangle_bvh {
     bool found = false;
     while (top > 0) {
       const entry e = stack[--top];
-      if (e.t_enter > t_max) continue;
+      if (e.t_enter > t_max * cull_margin) continue;
       if (e.count) {
         const packed_triangle* tri = &tris_[e.child];
         for (std::uint32_t k = 0; k < e.count; ++k)
@@ -314,7 +319,7 @@ class triangle_bvh {
       }
       const triangle_bvh_node4& n = nodes_[e.child];
       float t[4];
-      unsigned mask = hit_boxes(n, r, t_min, t_max, t);
+      unsigned mask = hit_boxes(n, r, t_min, t_max * cull_margin, t);
       if constexpr (count) stats->nodes += 4;
       const int first = top;
       for (; mask; mask &= mask - 1) {  // insert each hit child, keeping [first, top) by t
