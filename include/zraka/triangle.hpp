@@ -190,8 +190,8 @@ template <class T> struct watertight_ray {
 // edge-on; then t is the hit's distance and (u, v) the weights of B and C, not yet checked
 // against any interval.
 template <class T>
-ZRAKA_FORCE_INLINE bool watertight_test(const watertight_ray<T>& r, const vec3_t<T>& A, const vec3_t<T>& B,
-                     const vec3_t<T>& C, T& t, T& u, T& v) {
+ZRAKA_FORCE_INLINE bool watertight_test(const watertight_ray<T>& r, const vec3_t<T>& A,
+                                        const vec3_t<T>& B, const vec3_t<T>& C, T& t, T& u, T& v) {
   auto to_ray_space = [&](const vec3_t<T>& p) {  // q = p - O, permuted, then sheared
     const T* v = glm::value_ptr(p);  // indexed in memory: vec3's operator[] is a switch
     const T qx = v[r.kx] - r.ox, qy = v[r.ky] - r.oy, qz = v[r.kz] - r.oz;
