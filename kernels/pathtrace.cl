@@ -287,10 +287,10 @@ bool watertight_test(const watertight_ray_t* r, float3 A, float3 B, float3 C, fl
   const float3 a = to_ray_space(r, A), b = to_ray_space(r, B), c = to_ray_space(r, C);
   const float e_a = edge_function(c.x, b.y, c.y, b.x);
   const float e_b = edge_function(a.x, c.y, a.y, c.x);
-  if ((e_a < 0.0f && e_b > 0.0f) || (e_a > 0.0f && e_b < 0.0f)) return false;  // early out
+  if (fmin(e_a, e_b) < 0.0f && fmax(e_a, e_b) > 0.0f) return false;  // early out
   const float e_c = edge_function(b.x, a.y, b.y, a.x);
-  if ((e_a < 0.0f || e_b < 0.0f || e_c < 0.0f) && (e_a > 0.0f || e_b > 0.0f || e_c > 0.0f))
-    return false;  // the ray passes outside an edge
+  if (fmin(e_c, fmin(e_a, e_b)) < 0.0f && fmax(e_c, fmax(e_a, e_b)) > 0.0f)
+    return false;  // the ray passes outside an edge: weights of both signs
   const float det = e_a + e_b + e_c;  // 0: seen edge-on
   if (!(fabs(det) > 0.0f)) return false;
   const float inv_det = 1.0f / det;

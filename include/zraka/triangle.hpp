@@ -202,10 +202,10 @@ ZRAKA_FORCE_INLINE bool watertight_test(const watertight_ray<T>& r, const vec3_t
   // e_a is twice the signed area of (ray, B, C): the weight of A, and so on.
   const T e_a = edge_function(c.x, b.y, c.y, b.x);
   const T e_b = edge_function(a.x, c.y, a.y, c.x);
-  if ((e_a < T(0) && e_b > T(0)) || (e_a > T(0) && e_b < T(0))) return false;  // early out
+  if (std::min(e_a, e_b) < T(0) && std::max(e_a, e_b) > T(0)) return false;  // early out
   const T e_c = edge_function(b.x, a.y, b.y, a.x);
-  if ((e_a < T(0) || e_b < T(0) || e_c < T(0)) && (e_a > T(0) || e_b > T(0) || e_c > T(0)))
-    return false;  // the ray passes outside an edge
+  if (std::min(e_c, std::min(e_a, e_b)) < T(0) && std::max(e_c, std::max(e_a, e_b)) > T(0))
+    return false;  // the ray passes outside an edge: weights of both signs
   const T det = e_a + e_b + e_c;  // twice the projected area; 0: seen edge-on
   if (!(std::abs(det) > T(0))) return false;
   const T inv_det = T(1) / det;
