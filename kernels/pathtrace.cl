@@ -276,10 +276,11 @@ float edge_function(float a, float b, float c, float d) {
   return difference_of_products(a, b, c, d);
 }
 
+// q = p - O, permuted, then sheared: (x, y) and q[kz]; z = sz q[kz] only if t is wanted.
 float3 to_ray_space(const watertight_ray_t* r, float3 p) {
   const float3 q = p - r->origin;
   return (float3)(component(q, r->kx) - r->sx * component(q, r->kz),
-                  component(q, r->ky) - r->sy * component(q, r->kz), r->sz * component(q, r->kz));
+                  component(q, r->ky) - r->sy * component(q, r->kz), component(q, r->kz));
 }
 
 bool watertight_test(const watertight_ray_t* r, float3 A, float3 B, float3 C, float* t,
@@ -294,7 +295,7 @@ bool watertight_test(const watertight_ray_t* r, float3 A, float3 B, float3 C, fl
   const float det = e_a + e_b + e_c;  // 0: seen edge-on
   if (!(fabs(det) > 0.0f)) return false;
   const float inv_det = 1.0f / det;
-  *t = (e_a * a.z + e_b * b.z + e_c * c.z) * inv_det;
+  *t = (e_a * (r->sz * a.z) + e_b * (r->sz * b.z) + e_c * (r->sz * c.z)) * inv_det;
   *u = e_b * inv_det;
   *v = e_c * inv_det;
   return true;

@@ -192,10 +192,11 @@ template <class T> struct watertight_ray {
 template <class T>
 ZRAKA_FORCE_INLINE bool watertight_test(const watertight_ray<T>& r, const vec3_t<T>& A,
                                         const vec3_t<T>& B, const vec3_t<T>& C, T& t, T& u, T& v) {
-  auto to_ray_space = [&](const vec3_t<T>& p) {  // q = p - O, permuted, then sheared
+  // q = p - O, permuted, then sheared: (x, y) and q[kz]; z = sz q[kz] only if t is wanted.
+  auto to_ray_space = [&](const vec3_t<T>& p) {
     const T* v = glm::value_ptr(p);  // indexed in memory: vec3's operator[] is a switch
     const T qx = v[r.kx] - r.ox, qy = v[r.ky] - r.oy, qz = v[r.kz] - r.oz;
-    return vec3_t<T>(qx - r.sx * qz, qy - r.sy * qz, r.sz * qz);
+    return vec3_t<T>(qx - r.sx * qz, qy - r.sy * qz, qz);
   };
   const vec3_t<T> a = to_ray_space(A), b = to_ray_space(B), c = to_ray_space(C);
 
@@ -209,7 +210,7 @@ ZRAKA_FORCE_INLINE bool watertight_test(const watertight_ray<T>& r, const vec3_t
   const T det = e_a + e_b + e_c;  // twice the projected area; 0: seen edge-on
   if (!(std::abs(det) > T(0))) return false;
   const T inv_det = T(1) / det;
-  t = (e_a * a.z + e_b * b.z + e_c * c.z) * inv_det;
+  t = (e_a * (r.sz * a.z) + e_b * (r.sz * b.z) + e_c * (r.sz * c.z)) * inv_det;
   u = e_b * inv_det;
   v = e_c * inv_det;
   return true;
