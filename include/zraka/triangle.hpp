@@ -178,7 +178,7 @@ template <class T> struct watertight_ray {
 // [end]
 
 // The mesh BVH runs this once per triangle of a leaf: GCC would rather call it, which costs
-// the BVH a fifth of its speed, so it is inlined by force where the compiler knows how.
+// the BVH about a tenth of its speed, so it is inlined by force where the compiler knows how.
 #if defined(__GNUC__)
 #define ZRAKA_FORCE_INLINE [[gnu::always_inline]] inline
 #else
