@@ -9,7 +9,9 @@
 //
 // What changed from the CPU code: no recursion (OpenCL C forbids it; the loop carries the
 // throughput beta and the sum L, errata C6), no pointers between objects (indices into flat
-// arrays), float instead of double, and a fixed-size stack for the BVH walk. What did not: every
+// arrays), float instead of double (except where triangle.hpp's float test itself uses double:
+// two sign decisions of the watertight triangle test, so triangles need cl_khr_fp64), and a
+// fixed-size stack for the BVH walk. What did not: every
 // formula (the same intersection routines, error bounds and ray offsets as sphere.hpp, quad.hpp,
 // plane.hpp, triangle_bvh.hpp and spawn.hpp; the same materials as material.hpp), and the random
 // numbers: rng.cl keyed by (seed, pixel, sample) with path.hpp's draws in path.hpp's order, so a
