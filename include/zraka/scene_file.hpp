@@ -28,6 +28,7 @@
 #include <zraka/scene.hpp>
 #include <zraka/tessellate.hpp>
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -72,6 +73,8 @@ class scene_reader {
     YAML::Node loaded;
     try {
       loaded = YAML::Load(text);
+    } catch (const YAML::DeepRecursion& e) {
+      throw error(where(e.mark) + "YAML nesting deeper than " + std::to_string(e.depth() - 1) + " levels");
     } catch (const YAML::Exception& e) {  // ParserException, DeepRecursion (nesting beyond yaml-cpp's 2000)
       throw error(where(e.mark) + "YAML syntax: " + e.msg);
     }
@@ -153,7 +156,7 @@ class scene_reader {
   template <class V> void check_placed(const V& v, const YAML::Node& at, const std::string& field) const {
     for (int i = 0; i < 3; ++i)
       if (!(std::abs(double(v[i])) <= max_coordinate))
-        fail(at, field, "after the transform a coordinate is " + std::to_string(double(v[i])) +
+        fail(at, field, "after the transform a coordinate is " + num(double(v[i])).Scalar() +
                             ", beyond +-1e18 (its square would overflow)");
   }
 
