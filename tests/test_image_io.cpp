@@ -196,3 +196,13 @@ TEST_CASE("image_io: every malformed PFM is refused with its own message") {
                        error);
   CHECK_THROWS_WITH_AS(read_pfm("/dev/zero"), "/dev/zero: is a character device; only regular files are read", error);
 }
+
+TEST_CASE("image_io: an empty or folder-only output name is refused by name, and nothing is written") {
+  temp_dir dir;
+  image img(2, 2);
+  CHECK_THROWS_WITH_AS(write_image(img, ""), "the output file name is empty", error);
+  CHECK_THROWS_WITH_AS(write_image(img, dir.path.string() + "/"),
+                       ("cannot write '" + dir.path.string() + "/': it names a folder, not a file").c_str(), error);
+  CHECK_THROWS_WITH_AS(write_png(img, dir.path / ".png"), doctest::Contains("(an empty --out?)"), error);
+  CHECK(dir.entries() == 0);
+}

@@ -159,6 +159,7 @@ inline image read_pfm(const std::filesystem::path& path) {
 
 // Writes by extension: .png, .ppm or .pfm.
 inline void write_image(const image& img, const std::filesystem::path& path) {
+  check_output_name(path);  // "" or "folder/" say so, rather than "unknown image type ''"
   const auto ext = path.extension().string();
   if (ext == ".png") write_png(img, path);
   else if (ext == ".ppm") write_ppm(img, path);
