@@ -55,7 +55,7 @@ TEST_CASE("OBJ faces f v, v/vt, v//vn, v/vt/vn, negative indices and polygons (C
   CHECK(neg.triangle(0).c == vec3(1, 1, 0));
   // Names, groups, smoothing and materials are skipped; '+' signs, CRLF and a w are read.
   const mesh misc = parse_obj("mtllib a.mtl\no thing\ng part\ns 1\nusemtl red\r\nv +1 0 0 1\r\nv 0 1 0\nv 0 0 1\n"
-                              "# a comment\nf 1 2 3\r\n", "misc");
+                              "# a comment\nf 1 2 3 # a trailing comment\r\n", "misc");
   CHECK(misc.triangle_count() == 1);
   CHECK(misc.positions[0] == vec3(1, 0, 0));
   // The cube in scenes/meshes: six squares, twelve triangles, every face normal pointing out.

@@ -108,16 +108,15 @@ inline void write_pfm(const image& img, const std::filesystem::path& path) {
 
 // Strict: the header "PF W H SCALE" with a negative (little-endian) finite scale, exactly W*H
 // pixels after it, every one finite (a reference with NaN would poison every comparison).
-inline image read_pfm(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  const std::string bytes = read_input_file(path);  // a regular file within limits().file_bytes
+// parse_pfm reads the bytes of a PFM file (`name` for messages); read_pfm a file.
+inline image parse_pfm(std::string_view bytes, const std::string& name) {
   std::size_t pos = 0;
   auto field = [&](const char* what) {
     while (pos < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
     const std::size_t start = pos;
     while (pos < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[pos])) && pos - start < 32) ++pos;
     if (start == pos) throw error(name + ": not a PFM file (the header ends before the " + what + ")");
-    return std::string_view(bytes).substr(start, pos - start);
+    return bytes.substr(start, pos - start);
   };
   if (field("magic") != "PF") throw error(name + ": not a little-endian colour PFM file (it does not start with PF)");
   auto integer = [&](const char* what) {
@@ -155,6 +154,9 @@ inline image read_pfm(const std::filesystem::path& path) {
       if (!is_finite(img.at(x, y)))
         throw error(name + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is NaN or infinite");
   return img;
+}
+inline image read_pfm(const std::filesystem::path& path) {
+  return parse_pfm(read_input_file(path), path.string());  // a regular file within limits().file_bytes
 }
 
 // Writes by extension: .png, .ppm or .pfm.

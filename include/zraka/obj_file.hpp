@@ -69,9 +69,10 @@ class obj_reader {
     throw error(name_ + ":" + std::to_string(line_no_) + ":" + std::to_string(tok_col_ + 1) + ": " + what);
   }
   static bool space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-  // The next whitespace-separated token of the line ("" at its end).
+  // The next whitespace-separated token of the line ("" at its end, or at a '#' comment).
   std::string_view token() {
     while (col_ < line_.size() && space(line_[col_])) ++col_;
+    if (col_ < line_.size() && line_[col_] == '#') col_ = line_.size();
     const std::size_t start = col_;
     while (col_ < line_.size() && !space(line_[col_])) ++col_;
     tok_col_ = start;
@@ -112,7 +113,7 @@ class obj_reader {
   void statement() {
     col_ = 0;
     const std::string_view key = token();
-    if (key.empty() || key.front() == '#') return;
+    if (key.empty()) return;  // a blank line or a comment
     if (key == "v") {
       count(positions_.size(), "vertices");
       positions_.push_back(three_numbers("vertex coordinate"));

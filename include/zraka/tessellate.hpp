@@ -62,7 +62,7 @@ template <class T> mesh_t<T> tessellate(const std::vector<bezier_patch_t<T>>& pa
   if (divs >= 1 && divs <= max_tessellation_divs) {
     // Before the work: the size is known, and a large divs squares into gigabytes.
     check_limit(std::uint64_t(patches.size()) * triangles_per_patch(divs), limits().triangles, "triangles",
-                std::to_string(patches.size()) + " patches at divs " + std::to_string(divs) + " give triangles: that");
+                "the triangle count of " + std::to_string(patches.size()) + " patches at divs " + std::to_string(divs));
     m.positions.reserve(patches.size() * grid);
     m.normals.reserve(patches.size() * grid);
     m.triangles.reserve(patches.size() * triangles_per_patch(divs));
