@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -67,6 +68,8 @@ template <class T> class light_set_t {
       light l;
       l.point = int(i);
       l.power = 4.0 * pi<double> * mean(sc.point_lights[i].intensity);
+      if (!std::isfinite(l.power) || !is_finite(sc.point_lights[i].intensity))
+        throw error("lights: point light " + std::to_string(i) + " has a non-finite intensity");
       if (l.power > 0) lights_.push_back(l);
     }
     double total = 0;
@@ -247,6 +250,9 @@ template <class T> class light_set_t {
     }
     if (!(l.area > T(0)) || !std::isfinite(l.area)) return;  // degenerate: never hit either
     l.power = mean(m.radiance) * double(l.area) * pi<double> * (m.two_sided ? 2.0 : 1.0);
+    if (!std::isfinite(l.power) || !is_finite(m.radiance) || m.radiance.x < 0 || m.radiance.y < 0 || m.radiance.z < 0)
+      throw error("lights: material " + std::to_string(sc_.material_index(o)) +
+                  " glows with a negative or non-finite radiance, or on a shape of infinite area");
     index_[kind(o.kind)][std::size_t(o.index)] = int(lights_.size());
     lights_.push_back(l);
   }
