@@ -283,6 +283,37 @@ TEST_CASE("against the CPU's mis: diffuse spheres, a spherical light, a sky (nai
   check_scene("spheres", spheres_scene(), {integrator::naive, integrator::nee, integrator::mis});
 }
 
+// A closed form (book 2.3's furnace): the camera inside a sphere of albedo a that glows with Le
+// on its inside sees L = Le (1 - a^(D+1)) / (1 - a) after at most D bounces, in every pixel;
+// the sphere is a light sampled from its own inside (every direction of the cone).
+TEST_CASE("the furnace: inside a glowing sphere, Le (1 - a^(D+1)) / (1 - a) (naive, nee, mis)") {
+  auto ctx = device();
+  if (!ctx) return;
+  scene sc;
+  material m = material::lambertian(rgb(0.5f));
+  m.radiance = rgb(1.0f);
+  m.two_sided = true;
+  sc.add(sphere{{0, 0, 0}, 1}, sc.add_material(m));
+  sc.camera.position = {0.2, -0.1, 0.3};
+  sc.camera.look_at = {0, 0, -1};
+  const int depth = 5, w = 8, h = 8, spp = 256;
+  const double expected = (1 - std::pow(0.5, depth + 1)) / (1 - 0.5);
+  for (integrator mth : {integrator::naive, integrator::nee, integrator::mis}) {
+    const estimate k = kernel_render(*ctx, sc, w, h, spp, method(mth, depth), 3);
+    double mean = 0, var = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        mean += double(k.mean.at(x, y).x) / (w * h);
+        var += double(k.variance.at(x, y).x) / spp / (w * h) / (w * h);
+      }
+    const double se = std::sqrt(var);
+    std::printf("furnace        kernel %-5s mean %.5f, expected %.5f: %+.2f se (se %.5f)\n", zraka::name(mth), mean,
+                expected, (mean - expected) / se, se);
+    CHECK(std::abs(mean - expected) <= 5 * se + 1e-4 * expected);
+    CHECK(se > 0);
+  }
+}
+
 TEST_CASE("the kernel draws path.hpp's random numbers in path.hpp's order (paired samples)") {
   check_paired("triangle+point", triangle_light_scene(), integrator::mis);
   check_paired("phong", phong_scene(), integrator::mis);
