@@ -84,6 +84,9 @@ template <class T> class light_set_t {
   light_selection selection() const { return selection_; }
   // Emitters that are counted only when a ray hits them (see the top of this file).
   const std::vector<std::string>& hit_only() const { return hit_only_; }
+  // Meshes: their triangles' areas, summed, count + 1 entries from light.first (the GPU kernel
+  // packs them as they are: gpu_scene.hpp).
+  const std::vector<double>& triangle_cdf() const { return triangle_cdf_; }
 
   // The probability of choosing light i.
   T selection_pdf(int i) const { return T(weight(lights_[std::size_t(i)]) / total_); }
