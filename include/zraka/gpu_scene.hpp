@@ -233,7 +233,8 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, int max_depth,
       g.nodes.push_back(o);
     }
   }
-  for (const auto& l : light_set_t<T>(sc, light_selection::uniform).lights())
+  const light_set_t<T> light_set(sc, light_selection::uniform);  // named: a range-for over a temporary's member dangles
+  for (const auto& l : light_set.lights())
     if (l.point < 0 && (l.object.kind == shape_kind::sphere || l.object.kind == shape_kind::quad))
       g.lights.push_back({l.object.kind == shape_kind::sphere ? 0 : 1, l.object.index});
   if (!sc.point_lights.empty())

@@ -17,9 +17,10 @@ namespace mycourse {
 // [listing register-types]
 inline void register_types(zraka::scene_registry& reg) {
   reg.add_shape("disk", {"center", "normal", "radius"}, [](const zraka::scene_node& n) {
+    const zraka::vec3 c = n.point("center", zraka::vec3(0)), normal = n.direction("normal", {0, 1, 0});
     const double r = n.number("radius", 1.0);
     if (!(r > 0)) n.fail("radius", "must be positive");
-    return std::make_shared<const disk>(n.point("center", zraka::vec3(0)), n.direction("normal", {0, 1, 0}), r);
+    return std::make_shared<const disk>(c, normal, r);
   });
   reg.add_material("glossy", {"kd", "ks", "exponent"}, [](const zraka::scene_node& n) {
     const zraka::vec3 kd(n.colour("kd", zraka::rgb(0.2f))), ks(n.colour("ks", zraka::rgb(0.6f)));
