@@ -58,7 +58,7 @@ struct oren_nayar final : zraka::custom_bsdf {
     const double p = pdf(f, wo, wi);
     if (!(p > 0)) return std::nullopt;  // rounding put wi on the horizon
     // f cos / pdf = f cos / (cos / pi) = pi f: the cosine cancels exactly.
-    return zraka::custom_sample{wi, zraka::pi<double> * eval(wo, wi, n), p};
+    return zraka::custom_sample{wi, zraka::pi<double> * eval(f, wo, wi), p};
   }
 };
 
