@@ -13,6 +13,8 @@
 //
 // The defaults come from the structs themselves (render_settings, camera_t, material, texture,
 // point_light_t) and from scene_file_defaults below, so there is one place for each.
+// Types a program adds (a user shape, a custom BSDF) are read by name through a scene_registry
+// (scene_registry.hpp) passed to parse_scene / load_scene_file, with the same checks (scene_node).
 // Needs yaml-cpp and tinyobjloader (link yaml-cpp and tinyobjloader::tinyobjloader).
 #include <zraka/affine.hpp>
 #include <zraka/bpt.hpp>
@@ -150,11 +152,11 @@ class scene_node {
   std::string field(const std::string& key) const { return path_ + "." + key; }
   // [end]
 
+ private:
+  friend class detail::scene_reader;  // the only one that makes them
   scene_node(const detail::scene_reader& r, YAML::Node n, std::string path, std::string type,
              const std::vector<std::string>& keys, YAML::Node resolved)
       : r_(r), n_(std::move(n)), path_(std::move(path)), type_(std::move(type)), keys_(keys), resolved_(resolved) {}
-
- private:
   const detail::scene_reader& r_;
   YAML::Node n_;
   std::string path_, type_;
