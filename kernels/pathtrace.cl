@@ -9,7 +9,9 @@
 //
 // What changed from the CPU code: no recursion (OpenCL C forbids it; the loop carries the
 // throughput beta and the sum L, errata C6), no pointers between objects (indices into flat
-// arrays), float instead of double, and a fixed-size stack for the BVH walk. What did not: every
+// arrays), float instead of double (except where triangle.hpp's float test itself uses double:
+// two sign decisions of the watertight triangle test, so triangles need cl_khr_fp64), and a
+// fixed-size stack for the BVH walk. What did not: every
 // formula (the same intersection routines, error bounds and ray offsets as sphere.hpp, quad.hpp,
 // plane.hpp, triangle_bvh.hpp and spawn.hpp; the same materials as material.hpp), and the random
 // numbers: rng.cl keyed by (seed, pixel, sample) with path.hpp's draws in path.hpp's order, so a
@@ -23,12 +25,23 @@
 // gamma(n) = n u / (1 - n u), u = 2^-24 (spawn.hpp in float)
 #define GAMMA(n) (((float)(n) * 0x1p-24f) / (1.0f - (float)(n) * 0x1p-24f))
 
+#ifdef HAS_TRIANGLES
+// The watertight triangle test (triangle.hpp) decides two signs in double: an edge function
+// near 0, and t > 0 through the plane's equation. A device without doubles cannot run it.
+#ifdef cl_khr_fp64
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#define GAMMA_D(n) (((double)(n) * 0x1p-53) / (1.0 - (double)(n) * 0x1p-53))
+#else
+#error "the watertight triangle test needs double precision (cl_khr_fp64) on the OpenCL device"
+#endif
+#endif
+
 // ---------------------------------------------------------------- the shared structs (gpu_scene.hpp)
 // [listing cl-structs]
 typedef struct { float4 center_radius; int material, p0, p1, p2; } sphere_t;
 typedef struct { float4 corner, u, v, normal_area; int material, p0, p1, p2; } quad_t;
 typedef struct { float4 point, normal; int material, p0, p1, p2; } plane_t;
-typedef struct { float4 a, e1, e2; uint id; int material, p0, p1; } triangle_t;
+typedef struct { float4 a, b, c; uint id; int material, p0, p1; } triangle_t;
 typedef struct { float box[6][4]; uint child[4], count[4]; } node4_t;
 typedef struct {
   float4 albedo_a, albedo_b, radiance;
@@ -205,6 +218,7 @@ bool hit_plane(const plane_t pl, float3 o, float3 D, float t_max, hit_t* h) {
 // [listing cl-bvh]
 // triangle_bvh.hpp's walk: a stack of (child, count, entry t), nearest child on top.
 #define STACK_SIZE 196
+#define CULL_MARGIN (1.0f + 0x1p-18f)
 typedef struct { uint child, count; float t_enter; } entry_t;
 
 // Slab test of a node's four boxes; returns a mask of the boxes hit and their entry t.
@@ -227,33 +241,106 @@ uint hit_boxes(global const node4_t* n, float3 o, float3 inv, float t_max, float
   return mask;
 }
 
-// Moller-Trumbore on the packed triangle; ties at equal t go to the lower input index.
-bool test_triangle(global const triangle_t* tri, float3 o, float3 D, float t_max, float* best_t,
-                   uint* best_id, float* bu, float* bv) {
-  const float3 e1 = tri->e1.xyz, e2 = tri->e2.xyz;
-  const float3 p = cross(D, e2);
-  const float det = dot(e1, p);
-  if (!(det != 0.0f) || !isfinite(det)) return false;
+// [listing cl-watertight]
+// triangle.hpp's watertight test, line for line: its per-ray half (watertight_ray), its
+// per-triangle half (watertight_test) with the exact-sign edge functions, and the certainty
+// of t > 0 (t_certainly_positive). OpenCL C may fuse a*b - c*d into an FMA, as a C++ compiler
+// may: the filter in edge_function is there for exactly that.
+typedef struct { float3 origin, direction; int kx, ky, kz; float sx, sy, sz; } watertight_ray_t;
+
+float component(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
+
+watertight_ray_t watertight_ray(float3 o, float3 D) {
+  watertight_ray_t r;
+  r.origin = o;
+  r.direction = D;
+  const float3 ad = fabs(D);
+  r.kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+  r.kx = (r.kz + 1) % 3;
+  r.ky = (r.kx + 1) % 3;
+  if (component(D, r.kz) < 0.0f) {  // keep the winding
+    const int k = r.kx;
+    r.kx = r.ky;
+    r.ky = k;
+  }
+  r.sx = component(D, r.kx) / component(D, r.kz);
+  r.sy = component(D, r.ky) / component(D, r.kz);
+  r.sz = 1.0f / component(D, r.kz);
+  return r;
+}
+
+float difference_of_products(float a, float b, float c, float d) {
+  return (float)((double)a * (double)b - (double)c * (double)d);  // the products are exact
+}
+float edge_function(float a, float b, float c, float d) {
+  const float e = a * b - c * d;
+  if (fabs(e) > GAMMA(3) * (fabs(a * b) + fabs(c * d))) return e;  // sign certain
+  return difference_of_products(a, b, c, d);
+}
+
+// q = p - O, permuted, then sheared: (x, y) and q[kz]; z = sz q[kz] only if t is wanted.
+float3 to_ray_space(const watertight_ray_t* r, float3 p) {
+  const float3 q = p - r->origin;
+  return (float3)(component(q, r->kx) - r->sx * component(q, r->kz),
+                  component(q, r->ky) - r->sy * component(q, r->kz), component(q, r->kz));
+}
+
+bool watertight_test(const watertight_ray_t* r, float3 A, float3 B, float3 C, float* t,
+                     float* u, float* v) {
+  const float3 a = to_ray_space(r, A), b = to_ray_space(r, B), c = to_ray_space(r, C);
+  const float e_a = edge_function(c.x, b.y, c.y, b.x);
+  const float e_b = edge_function(a.x, c.y, a.y, c.x);
+  if (fmin(e_a, e_b) < 0.0f && fmax(e_a, e_b) > 0.0f) return false;  // early out
+  const float e_c = edge_function(b.x, a.y, b.y, a.x);
+  if (fmin(e_c, fmin(e_a, e_b)) < 0.0f && fmax(e_c, fmax(e_a, e_b)) > 0.0f)
+    return false;  // the ray passes outside an edge: weights of both signs
+  const float det = e_a + e_b + e_c;  // 0: seen edge-on
+  if (!(fabs(det) > 0.0f)) return false;
   const float inv_det = 1.0f / det;
-  const float3 s = o - tri->a.xyz;
-  const float u = dot(s, p) * inv_det;
-  if (!(u >= 0.0f && u <= 1.0f)) return false;
-  const float3 q = cross(s, e1);
-  const float v = dot(D, q) * inv_det;
-  if (!(v >= 0.0f && u + v <= 1.0f)) return false;
-  const float t = dot(e2, q) * inv_det;
+  *t = (e_a * (r->sz * a.z) + e_b * (r->sz * b.z) + e_c * (r->sz * c.z)) * inv_det;
+  *u = e_b * inv_det;
+  *v = e_c * inv_det;
+  return true;
+}
+
+// t = s / (n.D), s = n.(A - O): accepted when both signs are beyond their rounding errors.
+bool t_certainly_positive(float3 A, float3 B, float3 C, float3 O, float3 D) {
+  const double3 a = convert_double3(A), e1 = convert_double3(B) - a, e2 = convert_double3(C) - a;
+  const double3 w = a - convert_double3(O), d = convert_double3(D);
+  const double3 n = (double3)(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
+                              e1.x * e2.y - e1.y * e2.x);
+  const double3 n_abs = (double3)(fabs(e1.y * e2.z) + fabs(e1.z * e2.y),
+                                  fabs(e1.z * e2.x) + fabs(e1.x * e2.z),
+                                  fabs(e1.x * e2.y) + fabs(e1.y * e2.x));
+  const double s = n.x * w.x + n.y * w.y + n.z * w.z;
+  const double n_dot_d = n.x * d.x + n.y * d.y + n.z * d.z;
+  const double3 aw = fabs(w), ad = fabs(d);
+  return fabs(s) > GAMMA_D(9) * (n_abs.x * aw.x + n_abs.y * aw.y + n_abs.z * aw.z) &&
+         fabs(n_dot_d) > GAMMA_D(8) * (n_abs.x * ad.x + n_abs.y * ad.y + n_abs.z * ad.z) &&
+         (s > 0.0) == (n_dot_d > 0.0);
+}
+
+// triangle_bvh.hpp's leaf test: ties at equal t go to the lower input index.
+bool test_triangle(global const triangle_t* tri, const watertight_ray_t* r, float t_max,
+                   float* best_t, uint* best_id, float* bu, float* bv) {
+  const float3 A = tri->a.xyz, B = tri->b.xyz, C = tri->c.xyz;
+  float t, u, v;
+  if (!watertight_test(r, A, B, C, &t, &u, &v)) return false;
   if (!(t > 0.0f && (t < t_max || (t == *best_t && tri->id < *best_id)))) return false;
+  if (!t_certainly_positive(A, B, C, r->origin, r->direction)) return false;
   *best_t = t;
   *best_id = tri->id;
   *bu = u;
   *bv = v;
   return true;
 }
+// [end]
 
 // Nearest hit (h != 0) or any hit (h == 0) with t in (0, t_max).
 bool hit_bvh(const scene_t* sc, float3 o, float3 D, float t_max, hit_t* h) {
   if (sc->n_nodes == 0) return false;  // the all-features kernel on a scene without triangles
   const float3 inv = 1.0f / D;
+  const watertight_ray_t wr = watertight_ray(o, D);
   entry_t stack[STACK_SIZE];
   int top = 0;
   stack[top++] = (entry_t){0u, 0u, 0.0f};
@@ -262,10 +349,10 @@ bool hit_bvh(const scene_t* sc, float3 o, float3 D, float t_max, hit_t* h) {
   uint best_id = 0xffffffffu, best_leaf = 0;
   while (top > 0) {
     const entry_t e = stack[--top];
-    if (e.t_enter > t_max) continue;
+    if (e.t_enter > t_max * CULL_MARGIN) continue;  // triangle_bvh::cull_margin
     if (e.count) {
       for (uint k = 0; k < e.count; ++k)
-        if (test_triangle(&sc->tris[e.child + k], o, D, t_max, &best_t, &best_id, &bu, &bv)) {
+        if (test_triangle(&sc->tris[e.child + k], &wr, t_max, &best_t, &best_id, &bu, &bv)) {
           if (!h) return true;
           found = true;
           t_max = best_t;
@@ -275,7 +362,7 @@ bool hit_bvh(const scene_t* sc, float3 o, float3 D, float t_max, hit_t* h) {
     }
     global const node4_t* n = &sc->nodes[e.child];
     float t[4];
-    uint mask = hit_boxes(n, o, inv, t_max, t);
+    uint mask = hit_boxes(n, o, inv, t_max * CULL_MARGIN, t);
     const int first = top;
     for (int k = 0; k < 4 && top < STACK_SIZE; ++k) {
       if (!(mask & (1u << k))) continue;
@@ -286,13 +373,13 @@ bool hit_bvh(const scene_t* sc, float3 o, float3 D, float t_max, hit_t* h) {
   }
   if (found) {
     global const triangle_t* tri = &sc->tris[best_leaf];
-    const float3 A = tri->a.xyz, B = A + tri->e1.xyz, C = A + tri->e2.xyz;
+    const float3 A = tri->a.xyz, B = tri->b.xyz, C = tri->c.xyz;
     const float w = 1.0f - bu - bv;
     h->t = best_t;
     h->p = w * A + bu * B + bv * C;
     // The float test's own rounding, as scene.hpp widens it for meshes: gamma(64).
     h->p_error = GAMMA(64) * (fabs(w * A) + fabs(bu * B) + fabs(bv * C));
-    h->normal = normalize(cross(tri->e1.xyz, tri->e2.xyz));
+    h->normal = normalize(cross(B - A, C - A));
     h->material = tri->material;
   }
   return found;
@@ -438,6 +525,7 @@ bool scatter(global const material_t* m, float3 d, const hit_t* h, stream_t* g, 
   if (m->kind == KIND_EMITTER) return false;
   // Lambertian, cosine-weighted: f cos / pdf = albedo (errata C1, C6)
   const float u0 = clamp_unit(uniform(g)), u1 = clamp_unit(uniform(g));
+  uniform(g);  // material.hpp draws a third number (a lobe) for every surface with a density
   if (!(dot(-d, n) > 0.0f)) return false;
   const float r = sqrt(u0), phi = 2.0f * PI_F * u1;
   *wi = to_world(n, (float3)(r * cos(phi), r * sin(phi), sqrt(1.0f - u0)));

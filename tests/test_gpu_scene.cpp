@@ -91,7 +91,8 @@ TEST_CASE("triangles: the triangle BVH's nodes byte for byte, materials by input
   for (const gpu_triangle& t : g.triangles) {
     CHECK(t.material == (t.id == 0 ? a : b));  // input 0 is the lone triangle
     CHECK(t.a.x == tris[t.id].a.x);
-    CHECK(t.e1.x == tris[t.id].b.x - tris[t.id].a.x);
+    CHECK(t.b.x == tris[t.id].b.x);
+    CHECK(t.c.z == tris[t.id].c.z);
   }
 }
 

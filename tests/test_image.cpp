@@ -14,8 +14,16 @@ TEST_CASE("image: absurd sizes are rejected with a clear message") {
   // Each side allowed, but 16384 x 16384 = 268 M pixels is more than max_pixels (134 M).
   CHECK_THROWS_AS(image::check_size(16384, 16384), error);
   CHECK_THROWS_AS(image::check_size(1LL << 40, 1LL << 40), error);  // no overflow
-  CHECK_NOTHROW(image::check_size(16384, 8192));
   CHECK_NOTHROW(image(1, 1));
+  // Within the hard maximum, the raisable limit (limits.hpp: 4096 x 4096 by default) decides.
+  CHECK_NOTHROW(image::check_size(4096, 4096));
+  CHECK_THROWS_WITH_AS(image::check_size(4097, 4096),
+                       "the image size 4097x4096 in pixels is 16781312, more than the limit of 16777216 "
+                       "(raise with --limit pixels=N)", error);
+  const input_limits saved = limits();
+  set_limit(limits(), "pixels=134217728");
+  CHECK_NOTHROW(image::check_size(16384, 8192));
+  limits() = saved;
 }
 
 TEST_CASE("image: (0,0) is the top-left pixel, rows are stored top to bottom") {

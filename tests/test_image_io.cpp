@@ -155,3 +155,54 @@ TEST_CASE("image_io: a write into a missing folder throws and leaves nothing; no
                        error);
   CHECK(dir.entries() == 3);
 }
+
+TEST_CASE("image_io: every malformed PFM is refused with its own message") {
+  temp_dir dir;
+  const std::string px(12, '\0');                                  // one black pixel
+  std::string nan_px = px;
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  std::memcpy(nan_px.data() + 4, &nan, 4);
+  std::string inf_px = px;
+  std::memcpy(inf_px.data(), &inf, 4);
+  struct bad {
+    const char* name;
+    std::string bytes;
+    const char* expected;  // after "PATH: "
+  };
+  const bad cases[] = {
+      {"empty", "", "not a PFM file (the header ends before the magic)"},
+      {"grey", "Pf\n1 1\n-1.0\n" + std::string(4, '\0'), "not a little-endian colour PFM file (it does not start with PF)"},
+      {"no-height", "PF\n1", "not a PFM file (the header ends before the height)"},
+      {"word-width", "PF\none 1\n-1.0\n" + px, "the width 'one' is not an integer"},
+      {"width-overflow", "PF\n99999999999999999999 1\n-1.0\n" + px, "the width '99999999999999999999' is not an integer"},
+      {"zero-width", "PF\n0 1\n-1.0\n", "image size 0x1 is out of range (each side 1..16384)"},
+      {"too-many-pixels", "PF\n8192 8192\n-1.0\n",
+       "the image size 8192x8192 in pixels is 67108864, more than the limit of 16777216 (raise with --limit pixels=N)"},
+      {"nan-scale", "PF\n1 1\nnan\n" + px, "the scale 'nan' is not a finite non-zero number"},
+      {"zero-scale", "PF\n1 1\n0\n" + px, "the scale '0' is not a finite non-zero number"},
+      {"big-endian", "PF\n1 1\n1.0\n" + px, "a big-endian PFM (positive scale); only little-endian is read"},
+      {"truncated", "PF\n2 1\n-1.0\n" + px, "file ends early (truncated PFM)"},
+      {"trailing", "PF\n1 1\n-1.0\n" + px + "xyz", "3 bytes after the last pixel"},
+      {"nan-pixel", "PF\n2 1\n-1.0\n" + px + nan_px, "pixel (1, 0) is NaN or infinite"},
+      {"inf-pixel", "PF\n1 2\n-1.0\n" + inf_px + px, "pixel (0, 1) is NaN or infinite"},  // bottom row first
+  };
+  for (const bad& b : cases) {
+    INFO(b.name);
+    const fs::path p = dir.path / (std::string(b.name) + ".pfm");
+    std::ofstream(p, std::ios::binary) << b.bytes;
+    CHECK_THROWS_WITH_AS(read_pfm(p), (p.string() + ": " + b.expected).c_str(), error);
+  }
+  CHECK_THROWS_WITH_AS(read_pfm(dir.path), (dir.path.string() + ": is a directory; only regular files are read").c_str(),
+                       error);
+  CHECK_THROWS_WITH_AS(read_pfm("/dev/zero"), "/dev/zero: is a character device; only regular files are read", error);
+}
+
+TEST_CASE("image_io: an empty or folder-only output name is refused by name, and nothing is written") {
+  temp_dir dir;
+  image img(2, 2);
+  CHECK_THROWS_WITH_AS(write_image(img, ""), "the output file name is empty", error);
+  CHECK_THROWS_WITH_AS(write_image(img, dir.path.string() + "/"),
+                       ("cannot write '" + dir.path.string() + "/': it names a folder, not a file").c_str(), error);
+  CHECK_THROWS_WITH_AS(write_png(img, dir.path / ".png"), doctest::Contains("(an empty --out?)"), error);
+  CHECK(dir.entries() == 0);
+}

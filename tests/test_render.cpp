@@ -74,3 +74,24 @@ TEST_CASE("render: bad settings and exceptions in the sample function reach the 
     return rgb(0);
   }, o), error);
 }
+
+TEST_CASE("render: --threads beyond threads_per_core per core, and too many samples, are refused first") {
+  const long long cap = max_threads();
+  CHECK(cap == (long long)std::max(1u, std::thread::hardware_concurrency()) * 8);
+  CHECK(resolve_threads(int(cap)) == cap);
+  CHECK_THROWS_WITH_AS(resolve_threads(int(cap) + 1),
+                       doctest::Contains("per core on this "), error);
+  CHECK_THROWS_WITH_AS(resolve_threads(2147483647), doctest::Contains("(raise with --limit threads_per_core=N)"), error);
+  image img(4, 4);
+  render_options o;
+  o.progress = false;
+  int calls = 0;
+  auto one = [&](sample_context&) { ++calls; return rgb(1); };
+  const input_limits saved = limits();
+  set_limit(limits(), "samples=16");
+  CHECK_NOTHROW(render(img, 1, 1, one, o));
+  CHECK_THROWS_WITH_AS(render(img, 2, 1, one, o),
+                       "4x4 pixels at 2 spp are more samples than the limit of 16 (raise with --limit samples=N)", error);
+  CHECK(calls == 16);  // the refused render did no work
+  limits() = saved;
+}

@@ -1,6 +1,6 @@
-// links: yaml-cpp tinyobjloader
+// links: yaml-cpp
 // Scene files: every malformed scene in tests/scenes/bad gives its expected error (file, line,
-// column, field); defaults; every key honoured; transforms; OBJ variants (erratum C9); files found
+// column, field); defaults; every key honoured; transforms; mirrored meshes; files found
 // relative to the scene, then the resource root; the object BVH and mesh BVHs give the same
 // nearest hit as testing everything; rays spawned from a mesh hit never hit it again.
 #include <zraka/scene_file.hpp>
@@ -193,44 +193,8 @@ objects:
   CHECK(glm::length(sc.planes[0].shape.point - vec3(0, 3, 0)) < 1e-12);
 }
 
-TEST_CASE("scene file: OBJ faces f v, v/vt, v//vn, v/vt/vn, negative indices and polygons (C9)") {
+TEST_CASE("scene file: a mirrored OBJ mesh keeps its faces pointing out") {
   const fs::path dir = temp_dir("obj");
-  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 1\n"
-                               "vn 0 0 1\nvn 0 0 2\n";
-  struct variant {
-    const char* name;
-    const char* face;
-    std::size_t triangles;
-    bool normals;
-  };
-  const variant variants[] = {
-      {"v", "f 1 2 3\nf 1 3 4\n", 2, false},
-      {"v-vt", "f 1/1 2/2 3/3 4/4\n", 2, false},                         // a quad, fanned
-      {"v-vn", "f 1//1 2//1 3//2 5//1 4//2\n", 3, true},                 // a pentagon
-      {"v-vt-vn", "f 1/1/1 2/2/1 3/3/1\n", 1, true},
-      {"negative", "f -5 -4 -3\nf -5/-5/-2 -3/-3/-1 -2/-2/-2\n", 2, true},  // relative to the end
-  };
-  for (const variant& v : variants) {
-    INFO(v.name);
-    // negative: without vn on every corner the mesh is shaded flat (no normals kept).
-    write(dir / (std::string(v.name) + ".obj"), vertices + v.face);
-    const mesh m = detail::load_obj(dir / (std::string(v.name) + ".obj"));
-    CHECK(m.triangle_count() == v.triangles);
-    CHECK((m.normals.size() == m.positions.size()) == (v.normals && std::string(v.name) != "negative"));
-    for (std::size_t i = 0; i < m.triangle_count(); ++i) CHECK(m.triangle(i).normal() == vec3(0, 0, 1));
-    for (const vec3& n : m.normals) CHECK(n == vec3(0, 0, 1));  // vn 0 0 2 normalised
-  }
-  // -5 is the first of five vertices: the negative-index triangle is (0,0,0), (1,0,0), (1,1,0).
-  const mesh neg = detail::load_obj(dir / "negative.obj");
-  CHECK(neg.triangle(0).a == vec3(0, 0, 0));
-  CHECK(neg.triangle(0).c == vec3(1, 1, 0));
-  // The cube in scenes/meshes: six squares, twelve triangles, every face normal pointing out.
-  const mesh cube = detail::load_obj(resource_root() / "scenes/meshes/cube.obj");
-  REQUIRE(cube.triangle_count() == 12);
-  for (std::size_t i = 0; i < 12; ++i) {
-    const triangle t = cube.triangle(i);
-    CHECK(glm::dot(t.normal(), (t.a + t.b + t.c) / 3.0) > 0);
-  }
   // A mirroring transform keeps the faces pointing out (the winding is turned back).
   const loaded_scene ls =
       parse_scene("objects: [{type: mesh, file: meshes/cube.obj, transform: {scale: [-1, 1, 1]}}]", "m.yaml", dir);

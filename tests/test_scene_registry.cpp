@@ -1,4 +1,4 @@
-// links: yaml-cpp tinyobjloader
+// links: yaml-cpp
 // The scene registry (scene_registry.hpp): an outside project's types by name in a scene file.
 // The types are those of book/assignments/external (a disk user shape with area sampling and a
 // glossy custom BSDF), registered by its register_types(): loaded from YAML text, rendered by

@@ -141,3 +141,16 @@ TEST_CASE_TEMPLATE("an affine transform moves points and turns normals, mirrors 
   }
   CHECK_THROWS_AS(tessellate(patches, 4, affine_t<T>::scale(vec3_t<T>(1, 0, 1))), error);
 }
+
+TEST_CASE("the triangle limit is checked before tessellating, not after the memory is gone") {
+  const auto patches = load_bpt<double>(resource_path("scenes/teapot.bpt")).all_patches();
+  CHECK_THROWS_WITH_AS(tessellate(patches, 1024),
+                       "the triangle count of 32 patches at divs 1024 is 67108864, more than the limit of 4000000 "
+                       "(raise with --limit triangles=N)",
+                       error);
+  const input_limits saved = limits();
+  set_limit(limits(), "triangles=256");
+  CHECK(tessellate(patches, 2).triangles.size() == 256);
+  CHECK_THROWS_AS(tessellate(patches, 3), error);
+  limits() = saved;
+}

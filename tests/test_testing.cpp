@@ -9,6 +9,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
 
 using namespace zraka;
 namespace zt = zraka::testing;
@@ -225,4 +228,20 @@ TEST_CASE_TEMPLATE("testing: the reintersection check across scales", T, float, 
   const auto away = zt::no_self_hits<T>(isect, [](rng&) { return ray_t<T>(vec3_t<T>(0, 0, 5), vec3_t<T>(0, 0, 1)); }, 50);
   CHECK_FALSE(away.ok);
   CHECK(away.message.find("check aim()") != std::string::npos);
+}
+
+TEST_CASE("testing: a reference PNG is a regular file, and its claimed size is checked before decoding") {
+  namespace fs = std::filesystem;
+  const fs::path p = fs::temp_directory_path() / ("zraka-test-testing-claims-" + std::to_string(::getpid()) + ".png");
+  // The 8-byte signature and an IHDR chunk that claims 8192 x 8192 RGB: 33 bytes, 200 MB decoded.
+  std::string png = "\x89PNG\r\n\x1a\n";
+  png += std::string("\0\0\0\x0d", 4) + "IHDR" + std::string("\0\0\x20\0\0\0\x20\0\x08\x02\0\0\0", 13) + "CRC!";
+  std::ofstream(p, std::ios::binary) << png;
+  CHECK_THROWS_WITH_AS(zt::read_png_display(p),
+                       (p.string() + ": the image size 8192x8192 in pixels is 67108864, more than the limit of 16777216 "
+                                     "(raise with --limit pixels=N)").c_str(),
+                       error);
+  fs::remove(p);
+  CHECK_THROWS_WITH_AS(zt::read_png_display("/dev/zero"), "/dev/zero: is a character device; only regular files are read",
+                       error);
 }

@@ -474,3 +474,190 @@ TEST_CASE_TEMPLATE("the hit point lies within p_error of the triangle's plane", 
               ": worst (distance of p from the plane) / (spawn offset) = ", worst_ratio));
   CHECK(worst_ratio < 1);
 }
+
+namespace {
+
+// The conservative-t bound this library used before (pbrt's, on the errors of the shear, the
+// edge functions and t), kept here only to count the real hits it turned away.
+template <class T>
+bool old_bound_accepts(const triangle_t<T>& tri, const ray_t<T>& r, T t) {
+  const detail::watertight_ray<T> w(r);
+  auto to_ray_space = [&](const vec3_t<T>& p) {
+    const vec3_t<T> q = p - w.origin;
+    return vec3_t<T>(q[w.kx] - w.sx * q[w.kz], q[w.ky] - w.sy * q[w.kz], w.sz * q[w.kz]);
+  };
+  const vec3_t<T> a = to_ray_space(tri.a), b = to_ray_space(tri.b), c = to_ray_space(tri.c);
+  const T e_a = detail::edge_function(c.x, b.y, c.y, b.x);
+  const T e_b = detail::edge_function(a.x, c.y, a.y, c.x);
+  const T e_c = detail::edge_function(b.x, a.y, b.y, a.x);
+  const T inv_det = T(1) / (e_a + e_b + e_c);
+  const T X = max_component(glm::abs(vec3_t<T>(a.x, b.x, c.x)));
+  const T Y = max_component(glm::abs(vec3_t<T>(a.y, b.y, c.y)));
+  const T Z = max_component(glm::abs(vec3_t<T>(a.z, b.z, c.z)));
+  const T E = max_component(glm::abs(vec3_t<T>(e_a, e_b, e_c)));
+  const T dx = gamma<T>(7) * (X + Z), dy = gamma<T>(7) * (Y + Z), dz = gamma<T>(3) * Z;
+  const T de = T(2) * (gamma<T>(2) * X * Y + dx * Y + X * dy);
+  const T dt = T(3) * (gamma<T>(3) * E * Z + de * Z + E * dz) * std::abs(inv_det);
+  return t > dt;
+}
+
+// One cell of a sweep: rays that pass the edge tests at t > 0 (candidates), those the
+// certainty test accepts (all of them must be), those the old bound accepted; and rays spawned
+// from the hits (both sides, some grazing) that hit the triangle again (none may).
+struct sweep_cell {
+  long rays = 0, candidates = 0, accepted = 0, old_accepted = 0, spawned = 0, self_hits = 0;
+};
+
+template <class T>
+void probe(const triangle_t<T>& tri, const ray_t<T>& r, rng& g, sweep_cell& c) {
+  ++c.rays;
+  T t, u, v;
+  if (!detail::watertight_test(detail::watertight_ray<T>(r), tri.a, tri.b, tri.c, t, u, v) ||
+      !(t > T(0)))
+    return;
+  ++c.candidates;
+  c.old_accepted += old_bound_accepts(tri, r, t) ? 1 : 0;
+  hit_t<T> h;
+  if (!intersect_watertight(tri, r, T(0), infinity<T>, h)) return;
+  ++c.accepted;
+  for (int k = 0; k < 4; ++k) {
+    vec3_t<T> w = random_unit<T>(g);
+    if (k >= 2)  // grazing: 1e-6 ... 1e-2 radians off the surface
+      w = glm::normalize(w - glm::dot(w, h.normal) * h.normal) + T(log_uniform(g, -6, -2)) * h.normal;
+    if ((glm::dot(w, h.normal) > T(0)) != (k % 2 == 0)) w = -w;
+    hit_t<T> again;
+    ++c.spawned;
+    c.self_hits += intersect_watertight(tri, spawn_ray(h, w), T(0), infinity<T>, again) ? 1 : 0;
+  }
+}
+
+// A random rotation (columns of an orthonormal frame), applied in double.
+struct frame {
+  vec3 x, y, z;
+  explicit frame(rng& g) {
+    z = vec3(random_unit<double>(g));
+    x = glm::normalize(glm::cross(z, std::abs(z.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+    y = glm::cross(z, x);
+  }
+  vec3 operator()(const vec3& p) const { return p.x * x + p.y * y + p.z * z; }
+};
+
+template <class T>
+void report(const char* what, double param, const sweep_cell& c) {
+  MESSAGE(cat(type_name<T>(), " ", what, " ", param, ": ", c.rays, " rays, ", c.candidates,
+              " pass the edges, accepted ", c.accepted, " (old bound: ", c.old_accepted, "); ",
+              c.self_hits, "/", c.spawned, " spawned rays hit again"));
+  CHECK(c.accepted == c.candidates);
+  CHECK(c.self_hits == 0);
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("certainty of t > 0: slivers of aspect 1e-1 ... 1e-7 are hit", T, float, double) {
+  // Length 1, height `aspect`, at random places (|c| up to 100) and orientations; rays from
+  // distance 1 ... 100 at least 0.1 rad off the plane, aimed at points well inside.
+  rng g(101);
+  for (int e = 1; e <= 7; ++e) {
+    const double aspect = std::pow(10.0, -e);
+    sweep_cell c;
+    for (int i = 0; i < 400; ++i) {
+      const frame f(g);
+      const vec3 center = log_uniform(g, -2, 2) * vec3(random_unit<double>(g));
+      const triangle_t<T> tri{vec3_t<T>(center + f(vec3(-0.5, 0, 0))),
+                              vec3_t<T>(center + f(vec3(0.5, 0, 0))),
+                              vec3_t<T>(center + f(vec3(0.1 * g.uniform(), aspect, 0)))};
+      const double u = 0.25 + 0.5 * g.uniform(), v = 0.25 + 0.25 * g.uniform();
+      const vec3 target = (1 - u - v) * vec3(tri.a) + u * vec3(tri.b) + v * vec3(tri.c);
+      vec3 d = vec3(random_unit<double>(g));
+      if (std::abs(glm::dot(d, f.z)) < 0.1) d = glm::normalize(d + 0.2 * f.z);
+      const vec3 o = target + log_uniform(g, 0, 2) * d;
+      probe(tri, ray_t<T>(vec3_t<T>(o), vec3_t<T>(target - o)), g, c);
+      // and straight down the plane's normal, from an origin on the normal through the target
+      const vec3 o2 = target + log_uniform(g, 0, 2) * f.z;
+      probe(tri, ray_t<T>(vec3_t<T>(o2), vec3_t<T>(target - o2)), g, c);
+    }
+    report<T>("sliver, aspect", aspect, c);
+    // float: below aspect 1e-5 the rounding of the vertices and of the shear (~1e-7 of the
+    // distance) is as large as the sliver's height, so fewer rays pass the edges at all.
+    CHECK(c.candidates >= (sizeof(T) == 8 || aspect >= 1e-5 ? c.rays / 2 : c.rays / 8));
+  }
+}
+
+TEST_CASE_TEMPLATE("certainty of t > 0: tiny triangles far away are hit", T, float, double) {
+  // Size 1e-6 ... 1 near the coordinate origin (where float can represent them), seen from
+  // distance 1 ... 1e6. In float, beyond distance/size ~ 1e6 the rounded direction itself
+  // misses the triangle: those rays are not candidates, the rest must all be accepted.
+  rng g(202);
+  for (int se = 0; se <= 6; ++se)
+    for (int de = 0; de <= 6; de += 2) {
+      const double size = std::pow(10.0, -se), dist = std::pow(10.0, de);
+      sweep_cell c;
+      for (int i = 0; i < 100; ++i) {
+        const frame f(g);
+        const vec3 center = size * vec3(random_unit<double>(g));
+        const triangle_t<T> tri{vec3_t<T>(center + size * f(vec3(-0.5, -0.3, 0))),
+                                vec3_t<T>(center + size * f(vec3(0.5, -0.3, 0))),
+                                vec3_t<T>(center + size * f(vec3(0, 0.6, 0)))};
+        const vec3 target = (vec3(tri.a) + vec3(tri.b) + vec3(tri.c)) / 3.0;
+        vec3 d = vec3(random_unit<double>(g));
+        if (std::abs(glm::dot(d, f.z)) < 0.2) d = glm::normalize(d + 0.4 * f.z);
+        const vec3_t<T> o(target + dist * d);
+        probe(tri, ray_t<T>(o, vec3_t<T>(target) - o), g, c);
+      }
+      report<T>("tiny far triangle, size/distance", size / dist, c);
+      if (sizeof(T) == 8 || size / dist >= 1e-5) CHECK(c.candidates >= 90);
+    }
+}
+
+TEST_CASE_TEMPLATE("certainty of t > 0: rays nearly parallel to the plane are hit", T, float,
+                   double) {
+  // A triangle of size 1 at a random place and orientation; rays at 1e-1 ... 1e-6 rad to its
+  // plane from distance 0.5 ... 2, aimed at points well inside.
+  rng g(303);
+  for (int e = 1; e <= 6; ++e) {
+    const double angle = std::pow(10.0, -e);
+    sweep_cell c;
+    for (int i = 0; i < 400; ++i) {
+      const frame f(g);
+      const vec3 center = log_uniform(g, -1, 1) * vec3(random_unit<double>(g));
+      const triangle_t<T> tri{vec3_t<T>(center + f(vec3(-1, -1, 0))),
+                              vec3_t<T>(center + f(vec3(1, -1, 0))),
+                              vec3_t<T>(center + f(vec3(0, 1, 0)))};
+      const double u = 0.3 + 0.2 * g.uniform(), v = 0.3 + 0.2 * g.uniform();
+      const vec3 target = (1 - u - v) * vec3(tri.a) + u * vec3(tri.b) + v * vec3(tri.c);
+      const double phi = 2 * pi<double> * g.uniform();
+      const double side = i % 2 ? 1 : -1;  // from the front and from the back
+      const vec3 d = f(vec3(std::cos(angle) * std::cos(phi), std::cos(angle) * std::sin(phi),
+                            side * std::sin(angle)));
+      const vec3 o = target + (0.5 + 1.5 * g.uniform()) * d;
+      probe(tri, ray_t<T>(vec3_t<T>(o), vec3_t<T>(target - o)), g, c);
+    }
+    report<T>("grazing ray, angle", angle, c);
+    CHECK(c.candidates >= 300);
+  }
+}
+
+TEST_CASE_TEMPLATE("certainty of t > 0: the extreme cases", T, float, double) {
+  const triangle_t<T> tri{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const T tiny = std::numeric_limits<T>::min();
+  hit_t<T> h;
+  // Origin exactly in the plane, the ray leaving it: s = 0, never a hit.
+  CHECK_FALSE(intersect_watertight(tri, ray_t<T>({T(0.25), T(0.25), 0}, {0, 0, 1}), T(0), infinity<T>, h));
+  CHECK_FALSE(intersect_watertight(tri, ray_t<T>({T(0.25), T(0.25), 0}, {0, 0, -1}), T(0), infinity<T>, h));
+  // 1e-30 (double: 1e-300) above the plane, going down: a real hit at that t, accepted.
+  const T above = sizeof(T) == 4 ? T(1e-30) : T(1e-300);
+  REQUIRE(intersect_watertight(tri, ray_t<T>({T(0.25), T(0.25), above}, {0, 0, -1}), T(0), infinity<T>, h));
+  CHECK(std::abs(h.t - above) <= T(1e-6) * above);
+  CHECK_FALSE(intersect_watertight(tri, ray_t<T>({T(0.25), T(0.25), above}, {0, 0, 1}), T(0), infinity<T>, h));
+  // A sliver of height min (the smallest normal float/double) from far above: still a hit.
+  const triangle_t<T> flat{{0, 0, 0}, {1, 0, 0}, {T(0.5), tiny, 0}};
+  CHECK(intersect_watertight(flat, ray_t<T>({T(0.5), tiny / 2, T(1e3)}, {0, 0, -1}), T(0), infinity<T>, h));
+  CHECK_FALSE(intersect_watertight(flat, ray_t<T>({T(0.5), tiny / 2, T(1e3)}, {0, 0, 1}), T(0), infinity<T>, h));
+  // A ray in the plane, along it: s and n.D are 0: no hit, as before.
+  CHECK_FALSE(intersect_watertight(tri, ray_t<T>({-1, T(0.25), 0}, {1, 0, 0}), T(0), infinity<T>, h));
+  // Huge and tiny coordinates together: a triangle of size 1e-30 (float: 1e-15) at the
+  // coordinate origin, seen from 1e3 away.
+  const T s = sizeof(T) == 4 ? T(1e-15) : T(1e-30);
+  const triangle_t<T> small{{0, 0, 0}, {s, 0, 0}, {0, s, 0}};
+  CHECK(intersect_watertight(small, ray_t<T>({s / 4, s / 4, T(1e3)}, {0, 0, -1}), T(0), infinity<T>, h));
+}

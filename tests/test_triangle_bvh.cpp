@@ -1,7 +1,7 @@
 // The triangle BVH (triangle_bvh.hpp): its memory (4-wide nodes of 128 bytes, 32 per child;
 // 40-byte triangles; at most 80 bytes per triangle on the teapot), and hits identical to brute force (same t, same triangle,
 // same barycentrics, bit for bit) for nearest and any hit, against two references: its own brute
-// force loop and triangle.hpp's intersect_moller_trumbore() over the input in index order. On
+// force loop and triangle.hpp's intersect_watertight() over the input in index order. On
 // random soups, the teapot at several divs, axis-aligned rays, rays from inside, no triangles,
 // one triangle, identical centroids, degenerate triangles and NaN rays.
 #include <zraka/bpt.hpp>
@@ -12,7 +12,13 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
 #include <vector>
 
 using namespace zraka;
@@ -30,13 +36,13 @@ vec3f random_in(rng& g, const aabb_t<float>& b) {
   return b.lo + vec3f(vec3(g.uniform(), g.uniform(), g.uniform())) * (b.hi - b.lo);
 }
 
-// The independent reference: triangle.hpp's Moller-Trumbore over every input triangle in index
+// The independent reference: triangle.hpp's watertight test over every input triangle in index
 // order; strict t < t_max, so among exact ties the lowest index stays.
 triangle_bvh_hit reference(const std::vector<tri_f>& tris, const rayf& r, float t_max) {
   triangle_bvh_hit best;
   for (std::size_t i = 0; i < tris.size(); ++i) {
     hit_t<float> h;
-    if (intersect_moller_trumbore(tris[i], r, 0.0f, t_max, h)) {
+    if (intersect_watertight(tris[i], r, 0.0f, t_max, h)) {
       t_max = h.t;
       best = {h.t, h.uv.x, h.uv.y, std::uint32_t(i)};
     }
@@ -282,4 +288,161 @@ TEST_CASE("errata C10: log-like on the teapot, linear on slivers through one poi
   MESSAGE("slivers: " << s1 << " tests per ray at n = 256, " << s4 << " at 1024");
   CHECK(s4 > 3 * s1);  // four times n, about four times the work: O(n)
   CHECK(s4 > 1024);    // more tests than brute force's n
+}
+
+namespace {
+
+// Rays aimed exactly at the points of a mesh's shared edges (every 1/8, in float) and at its
+// interior vertices, from a direction that faces every triangle there (so no silhouette folds
+// the surface over the point, where a ray may rightly pass by). Triangles share by position,
+// not by index, so patch seams count too; degenerate triangles are left out, as by the BVH.
+struct aimed_ray {
+  vec3 target, direction;
+};
+
+std::vector<aimed_ray> aim_at_shared(const std::vector<tri_f>& tris, rng& g) {
+  using key = std::array<float, 3>;
+  auto k = [](const vec3f& p) { return key{p.x, p.y, p.z}; };
+  std::map<key, std::vector<int>> at_vertex;
+  std::map<std::pair<key, key>, std::vector<int>> at_edge;
+  std::vector<vec3> normals(tris.size());
+  for (int i = 0; i < int(tris.size()); ++i) {
+    const tri_f& t = tris[i];
+    const vec3 n = glm::cross(vec3(t.b) - vec3(t.a), vec3(t.c) - vec3(t.a));
+    if (glm::cross(t.b - t.a, t.c - t.a) == vec3f(0) || glm::length(n) == 0) continue;
+    normals[i] = glm::normalize(n);
+    const std::array<vec3f, 3> v = {t.a, t.b, t.c};
+    for (int j = 0; j < 3; ++j) {
+      at_vertex[k(v[j])].push_back(i);
+      const key a = k(v[j]), b = k(v[(j + 1) % 3]);
+      at_edge[std::minmax(a, b)].push_back(i);
+    }
+  }
+  auto facing = [&](const std::vector<int>& around, vec3& d) {  // false: no direction faces all
+    vec3 sum(0);
+    for (int i : around) sum += normals[i];
+    if (glm::length(sum) == 0) return false;
+    d = glm::normalize(glm::normalize(sum) + 0.2 * vec3(random_unit(g)));
+    for (int i : around)
+      if (glm::dot(d, normals[i]) < 0.05) return false;
+    return true;
+  };
+  std::vector<aimed_ray> out;
+  std::set<key> open;  // vertices on an edge not shared by exactly two triangles
+  for (const auto& [e, around] : at_edge) {
+    if (around.size() != 2) {
+      open.insert(e.first);
+      open.insert(e.second);
+      continue;
+    }
+    vec3 d;
+    if (!facing(around, d)) continue;
+    const vec3 a(e.first[0], e.first[1], e.first[2]), b(e.second[0], e.second[1], e.second[2]);
+    for (int s = 1; s < 8; ++s) out.push_back({a + (s / 8.0) * (b - a), d});
+  }
+  for (const auto& [v, around] : at_vertex) {
+    vec3 d;
+    if (!open.count(v) && facing(around, d)) out.push_back({vec3(v[0], v[1], v[2]), d});
+  }
+  return out;
+}
+
+struct crack_count {
+  long rays = 0, bvh = 0, brute = 0, any = 0, different = 0;
+  double worst_dt = 0;
+};
+
+// The mesh scaled by `scale` and moved by `shift` (then rounded to float), rays from `dist`
+// times the scale away: cracks of the nearest-hit walk, of brute force and of occluded().
+crack_count cracks(const std::vector<tri_f>& unit, double scale, const vec3& shift, double dist,
+                   int stride, rng& g) {
+  std::vector<tri_f> tris;
+  for (const tri_f& t : unit)
+    tris.push_back({vec3f(scale * vec3(t.a) + shift), vec3f(scale * vec3(t.b) + shift),
+                    vec3f(scale * vec3(t.c) + shift)});
+  const triangle_bvh bvh(tris);
+  crack_count c;
+  const std::vector<aimed_ray> aimed = aim_at_shared(tris, g);
+  for (std::size_t i = 0; i < aimed.size(); i += std::size_t(stride)) {
+    const aimed_ray& a = aimed[i];
+    const vec3f target(a.target), o(a.target + dist * scale * a.direction);
+    const rayf r(o, target - o);
+    triangle_bvh_hit h, b;
+    ++c.rays;
+    const bool found = bvh.intersect(r, 0.0f, infinity<float>, h);
+    const bool brute_found = bvh.intersect_brute_force(r, 0.0f, infinity<float>, b);
+    c.bvh += found ? 0 : 1;
+    c.brute += brute_found ? 0 : 1;
+    c.any += bvh.occluded(r, 0.0f, infinity<float>) ? 0 : 1;
+    c.different += found == brute_found && same(h, b) ? 0 : 1;
+    if (found && brute_found && !same(h, b))
+      c.worst_dt = std::max(c.worst_dt, double(std::abs(h.t - b.t)) / double(b.t));
+  }
+  return c;
+}
+
+std::vector<tri_f> fan_mesh(int n, float h) {
+  std::vector<tri_f> tris;
+  for (int k = 0; k < n; ++k) {
+    auto rim = [&](int j) {
+      const double th = 2 * pi<double> * j / n;
+      return vec3f(vec3(std::cos(th), std::sin(th), 0));  // rounded once: shared exactly
+    };
+    tris.push_back({vec3f(0, 0, h), rim(k), rim((k + 1) % n)});
+  }
+  return tris;
+}
+
+std::vector<tri_f> grid_mesh(int n) {
+  auto v = [&](int i, int j) {
+    return vec3f(vec3(i, j, 0.37 * std::sin(i * 1.3 + j * 0.7)) / double(n));
+  };
+  std::vector<tri_f> tris;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      tris.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
+      tris.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
+    }
+  return tris;
+}
+
+}  // namespace
+
+TEST_CASE("watertight in float: no ray through a shared edge or vertex (fans, grids, teapot)") {
+  const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
+  struct test_mesh {
+    const char* what;
+    std::vector<tri_f> tris;
+    int stride;  // every stride-th aimed ray (brute force on the teapot is the slow part)
+  };
+  const std::vector<test_mesh> meshes = {
+      {"fan of 48, cone", fan_mesh(48, 0.25f), 1},
+      {"fan of 64, flat", fan_mesh(64, 0.0f), 1},
+      {"grid 16x16", grid_mesh(16), 2},
+      {"teapot divs 6", float_triangles(tessellate(patches, 6)), 7}};
+  rng g(4242);
+  for (const auto& [what, unit, stride] : meshes) {
+    crack_count total;
+    // Scales 1e-4 ... 1e4; at the coordinate origin and shifted 1e3 scales away (fewer fraction
+    // bits); rays from 1, 100 and 1e4 sizes away.
+    for (const double scale : {1e-4, 1e-2, 1.0, 1e2, 1e4})
+      for (const double shift : {0.0, 1e3})
+        for (const double dist : {1.0, 1e2, 1e4}) {
+          const crack_count c = cracks(unit, scale, shift * scale * vec3(1, -2, 3), dist, stride, g);
+          total.rays += c.rays;
+          total.bvh += c.bvh;
+          total.brute += c.brute;
+          total.any += c.any;
+          total.different += c.different;
+          total.worst_dt = std::max(total.worst_dt, c.worst_dt);
+        }
+    MESSAGE(std::string(what) << ": " << total.rays << " rays at shared edges and vertices; cracks: BVH "
+                 << total.bvh << ", brute force " << total.brute << ", occluded() "
+                 << total.any << "; BVH != brute force: " << total.different << " (worst relative t difference " << total.worst_dt << ")");
+    CHECK(total.rays > 1000);
+    CHECK(total.bvh == 0);
+    CHECK(total.brute == 0);
+    CHECK(total.any == 0);
+    CHECK(total.different == 0);
+  }
 }

@@ -94,11 +94,11 @@ TEST_CASE("whitted: occluders cast shadows however far they are from the shaded 
     const ray down({3.001, 5, 0.002}, {-3, -5, 0});
     std::uint64_t rays = 0;
     rng g(1);
-    const rgb lit = whitted_radiance(sc, down, g, whitted_options{}, rays);
+    const rgb lit = whitted_radiance(sc, light_set(sc), down, g, whitted_options{}, rays);
     CHECK(lit.x == doctest::Approx(0.5 / pi<double> * 1e4 / 1e4).epsilon(1e-5));  // rho/pi I/d^2
     const double r = std::min(0.004, height / 2);
     sc.add(sphere{{0, height, 0}, r}, grey);  // between floor and light, off the camera ray's path
-    const rgb shadowed = whitted_radiance(sc, down, g, whitted_options{}, rays);
+    const rgb shadowed = whitted_radiance(sc, light_set(sc), down, g, whitted_options{}, rays);
     INFO("occluder at height " << height);
     CHECK(shadowed == rgb(0));
   }
@@ -110,7 +110,7 @@ TEST_CASE("whitted: occluders cast shadows however far they are from the shaded 
   sc.add(sphere{{0, 11, 0}, 0.5}, grey);
   std::uint64_t rays = 0;
   rng g(1);
-  CHECK(whitted_radiance(sc, ray({0.001, 5, 0.002}, {0, -1, 0}), g, whitted_options{}, rays).x > 0);
+  CHECK(whitted_radiance(sc, light_set(sc), ray({0.001, 5, 0.002}, {0, -1, 0}), g, whitted_options{}, rays).x > 0);
 }
 
 TEST_CASE("whitted: total internal reflection traps light in glass; Fresnel splitting conserves energy") {
@@ -124,11 +124,11 @@ TEST_CASE("whitted: total internal reflection traps light in glass; Fresnel spli
   opt.min_weight = 0;
   // From inside, along a chord 0.9 from the centre: sin(theta) = 0.9 > 1/1.5 at every hit, and
   // every chord of that ray has the same angle: light never gets out.
-  CHECK(whitted_radiance(sc, ray({0.9, 0, 0}, {0, 1, 0}), g, opt, rays) == rgb(0));
+  CHECK(whitted_radiance(sc, light_set(sc), ray({0.9, 0, 0}, {0, 1, 0}), g, opt, rays) == rgb(0));
   // 0.5 from the centre: below the critical angle. With depth 1 the first exit carries 1 - R.
   opt.max_depth = 1;
   const double R = fresnel_dielectric(std::sqrt(1 - 0.25), 1.5);
-  CHECK(whitted_radiance(sc, ray({0.5, 0, 0}, {0, 1, 0}), g, opt, rays).x == doctest::Approx(1 - R).epsilon(1e-6));
+  CHECK(whitted_radiance(sc, light_set(sc), ray({0.5, 0, 0}, {0, 1, 0}), g, opt, rays).x == doctest::Approx(1 - R).epsilon(1e-6));
   // From outside, under a uniform sky of 1, everything that enters leaves again: radiance 1 for
   // any ray (up to the branches cut at min_weight 1e-4 and depth 40: tolerance 1e-3).
   opt.max_depth = 40;
@@ -136,7 +136,7 @@ TEST_CASE("whitted: total internal reflection traps light in glass; Fresnel spli
   for (int i = 0; i < 200; ++i) {
     const vec3 o = 3.0 * sample_uniform_sphere(g.uniform2());
     const vec3 target = 0.99 * sample_unit_ball(vec3(g.uniform(), g.uniform(), g.uniform()));
-    const rgb L = whitted_radiance(sc, ray(o, target - o), g, opt, rays);
+    const rgb L = whitted_radiance(sc, light_set(sc), ray(o, target - o), g, opt, rays);
     CHECK(L.x == doctest::Approx(1).epsilon(1e-3));
   }
 }
@@ -151,7 +151,7 @@ TEST_CASE("whitted: a mirror shows the light's colour; depth 1 stops at the mirr
   rng g(1);
   whitted_options opt;
   opt.max_depth = 1;
-  CHECK(whitted_radiance(sc, ray({0, 1, 0.5}, {0, -1, -0.1}), g, opt, rays) == rgb(2));  // 0.5 x 4
+  CHECK(whitted_radiance(sc, light_set(sc), ray({0, 1, 0.5}, {0, -1, -0.1}), g, opt, rays) == rgb(2));  // 0.5 x 4
   opt.max_depth = 0;  // no reflection allowed: the mirror is black
-  CHECK(whitted_radiance(sc, ray({0, 1, 0.5}, {0, -1, -0.1}), g, opt, rays) == rgb(0));
+  CHECK(whitted_radiance(sc, light_set(sc), ray({0, 1, 0.5}, {0, -1, -0.1}), g, opt, rays) == rgb(0));
 }

@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
     whitted_options opt;
     opt.max_depth = sc.settings.max_depth;
     opt.model = blinn ? local_model::blinn_phong : local_model::phong;
-    std::printf("scene: %s\n%s\n", scene_path.c_str(), describe_built(sc).c_str());
+    std::printf("scene: %s\n%s\n%s\n", scene_path.c_str(), describe_built(sc).c_str(), light_set(sc).describe().c_str());
     std::fflush(stdout);
 
     image img(sc.settings.width, sc.settings.height);

@@ -127,7 +127,7 @@ std::string scene_json(const scene& sc, int width, int height, int depth) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_name = "cornell-glass", method = "mis", out = "pathtrace", pfm, reference, report, json;
+  std::string scene_name = "cornell-glass", method = "mis", selection = "power", out = "pathtrace", pfm, reference, report, json;
   std::optional<int> width, height, spp, depth;
   int rr_depth = 3;
   double budget = 0;
@@ -142,6 +142,7 @@ int main(int argc, char** argv) {
   app.add_option("--spp", spp, "samples per pixel (default: the scene's)");
   app.add_option("--depth", depth, "maximum bounces; 0 = only what the camera sees (default: the scene's)");
   app.add_option("--rr-depth", rr_depth, "Russian roulette from this many bounces on");
+  app.add_option("--lights", selection, "how next-event estimation chooses a light: power or uniform");
   app.add_option("--seed", seed, "random seed");
   app.add_option("--threads", ropt.threads, "threads (0 = all cores)");
   app.add_flag("--centre", centre, "sample every pixel at its centre (no anti-aliasing): the error against a "
@@ -164,11 +165,17 @@ int main(int argc, char** argv) {
     io.method = parse_integrator(method);
     io.max_depth = depth.value_or(sc.settings.max_depth);
     io.rr_depth = rr_depth;
+    if (selection != "power" && selection != "uniform")
+      throw error("--lights must be power or uniform, got '" + selection + "'");
+    io.lights = selection == "power" ? light_selection::power : light_selection::uniform;
     if (io.max_depth < 0 || io.max_depth > 1000)
       throw error("--depth must be in 0..1000, got " + std::to_string(io.max_depth));
     if (!report.empty() && reference.empty()) throw error("--report needs --reference");
     if (!json.empty()) {
       if (!sc.planes.empty()) throw error("--export: Mitsuba has no infinite plane; use a large quad");
+      if (!sc.user_shapes.empty()) throw error("--export: a user shape ('" + sc.user_shapes[0].shape->name() + "') cannot be exported");
+      for (const material& m : sc.materials)
+        if (is_custom(m)) throw error("--export: a custom BSDF ('" + m.bsdf->name() + "') cannot be exported");
       write_file_atomically(json, scene_json(sc, W, H, io.max_depth));
       std::printf("wrote %s (%zu spheres, %zu quads, %zu materials)\n", json.c_str(), sc.spheres.size(),
                   sc.quads.size(), sc.materials.size());
@@ -200,9 +207,8 @@ int main(int argc, char** argv) {
     }, &tot);
     // [end]
 
-    std::printf("scene %s, %dx%d; %s\n", scene_name.c_str(), W, H, describe_built(sc).c_str());
-    if (io.method == integrator::naive && !sc.point_lights.empty())
-      std::printf("note: naive path tracing never finds a point light (a ray cannot hit a point)\n");
+    std::printf("scene %s, %dx%d; %s\n%s\n", scene_name.c_str(), W, H, describe_built(sc).c_str(),
+                tracer.lights.describe().c_str());
     std::printf("integrator %s%s, at most %d bounces, Russian roulette from bounce %d\n", name(io.method),
                 io.method == integrator::mis ? " (power heuristic)" : "", io.max_depth, io.rr_depth);
     if (ref) {

@@ -7,8 +7,12 @@
 // table shows up much later as a torn teapot.
 #include <zraka/bezier_patch.hpp>
 #include <zraka/error.hpp>
+#include <zraka/input_file.hpp>
+#include <zraka/limits.hpp>
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -90,11 +94,13 @@ template <class T = double> patch_set_t<T> parse_bpt(std::istream& in, const std
     rd.fail("the header must be 'P V' (two counts), found " + std::to_string(f.size()) +
             " field(s)");
   const long long P = rd.integer(f[0]), V = rd.integer(f[1]);
-  constexpr long long max_count = 1 << 24;  // far beyond any hand-made patch set; stops typos
-  if (P < 1 || P > max_count)
-    rd.fail("patch count " + f[0] + " is out of range 1.." + std::to_string(max_count));
-  if (V < 1 || V > max_count)
-    rd.fail("vertex count " + f[1] + " is out of range 1.." + std::to_string(max_count));
+  // Checked before anything is read or reserved: the header alone must not ask for gigabytes.
+  const auto max_p = static_cast<long long>(std::min<std::uint64_t>(limits().patches, 1ULL << 40));
+  const auto max_v = static_cast<long long>(std::min<std::uint64_t>(limits().vertices, 1ULL << 40));
+  if (P < 1 || P > max_p)
+    rd.fail("patch count " + f[0] + " is out of range 1.." + std::to_string(max_p) + " " + raise_hint("patches"));
+  if (V < 1 || V > max_v)
+    rd.fail("vertex count " + f[1] + " is out of range 1.." + std::to_string(max_v) + " " + raise_hint("vertices"));
 
   patch_set_t<T> set;
   for (long long k = 0; k < P; ++k) {
@@ -119,6 +125,9 @@ template <class T = double> patch_set_t<T> parse_bpt(std::istream& in, const std
               std::to_string(f.size()));
     const vec3_t<T> x(T(rd.number(f[0])), T(rd.number(f[1])), T(rd.number(f[2])));
     if (!is_finite(x)) rd.fail("vertex " + std::to_string(k + 1) + " overflows this precision");
+    for (int i = 0; i < 3; ++i)
+      if (std::abs(double(x[i])) > max_coordinate)
+        rd.fail("vertex " + std::to_string(k + 1) + ": " + f[i] + " is beyond +-1e18 (its square would overflow)");
     set.vertices.push_back(x);
   }
   if (rd.next(f)) rd.fail("unexpected data after the last vertex: '" + f[0] + "'");
@@ -126,8 +135,7 @@ template <class T = double> patch_set_t<T> parse_bpt(std::istream& in, const std
 }
 
 template <class T = double> patch_set_t<T> load_bpt(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw error("cannot open " + path.string());
+  std::istringstream in(read_input_file(path));  // a regular file within limits().file_bytes
   return parse_bpt<T>(in, path.string());
 }
 

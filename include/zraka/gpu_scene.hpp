@@ -51,8 +51,8 @@ struct gpu_plane {
   gpu_float4 point, normal;  // unit normal
   std::int32_t material, pad[3];
 };
-struct gpu_triangle {        // Moller-Trumbore's data, in the BVH's leaf order
-  gpu_float4 a, e1, e2;      // e1 = B - A, e2 = C - A
+struct gpu_triangle {        // packed_triangle (the watertight test's data), in the BVH's leaf order
+  gpu_float4 a, b, c;        // the vertices
   std::uint32_t id;          // index in the input, the tie-breaker of triangle_bvh
   std::int32_t material, pad[2];
 };
@@ -224,7 +224,7 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, int max_depth,
   if (!tris.empty()) {
     const triangle_bvh bvh(tris);
     for (const packed_triangle& p : bvh.triangles())
-      g.triangles.push_back({to_gpu(p.a), to_gpu(p.e1), to_gpu(p.e2), p.id,
+      g.triangles.push_back({to_gpu(p.a), to_gpu(p.b), to_gpu(p.c), p.id,
                              tri_material[p.id], {0, 0}});
     for (const triangle_bvh_node4& n : bvh.nodes()) {
       gpu_node4 o;
@@ -233,8 +233,8 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, int max_depth,
       g.nodes.push_back(o);
     }
   }
-  const light_set_t<T> light_set(sc, light_selection::uniform);  // named: a range-for over a temporary's member dangles
-  for (const auto& l : light_set.lights())
+  const light_set_t<T> light_list(sc, light_selection::uniform);
+  for (const auto& l : light_list.lights())
     if (l.point < 0 && (l.object.kind == shape_kind::sphere || l.object.kind == shape_kind::quad))
       g.lights.push_back({l.object.kind == shape_kind::sphere ? 0 : 1, l.object.index});
   if (!sc.point_lights.empty())

@@ -2,6 +2,7 @@
 // A linear-light RGB image of floats. Conventions: pixel (0,0) is the top-left corner, x runs
 // right, y runs down; values are linear radiance (no gamma) until a writer encodes them.
 #include <zraka/error.hpp>
+#include <zraka/limits.hpp>
 #include <zraka/vec.hpp>
 
 #include <cstddef>
@@ -40,6 +41,9 @@ struct image {
         static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > max_pixels)
       throw error("image size " + std::to_string(w) + "x" + std::to_string(h) +
                   " is out of range (each side 1.." + std::to_string(max_side) + ")");
+    // Below the hard maximum, the raisable one (limits.hpp) keeps a run within the memory.
+    check_limit(std::uint64_t(w) * std::uint64_t(h), limits().pixels, "pixels",
+                "the image size " + std::to_string(w) + "x" + std::to_string(h) + " in pixels");
   }
 };
 

@@ -6,9 +6,12 @@
 // returned; PFM refuses them, since a reference image with NaN would poison every comparison.
 #include <zraka/atomic_file.hpp>
 #include <zraka/image.hpp>
+#include <zraka/input_file.hpp>
 
 #include <algorithm>
 #include <bit>
+#include <charconv>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -17,6 +20,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -102,27 +106,62 @@ inline void write_pfm(const image& img, const std::filesystem::path& path) {
   write_file_atomically(path, out);
 }
 
-inline image read_pfm(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw error("cannot open " + path.string());
-  std::string magic;
-  long long w = 0, h = 0;
+// Strict: the header "PF W H SCALE" with a negative (little-endian) finite scale, exactly W*H
+// pixels after it, every one finite (a reference with NaN would poison every comparison).
+// parse_pfm reads the bytes of a PFM file (`name` for messages); read_pfm a file.
+inline image parse_pfm(std::string_view bytes, const std::string& name) {
+  std::size_t pos = 0;
+  auto field = [&](const char* what) {
+    while (pos < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
+    const std::size_t start = pos;
+    while (pos < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[pos])) && pos - start < 32) ++pos;
+    if (start == pos) throw error(name + ": not a PFM file (the header ends before the " + what + ")");
+    return bytes.substr(start, pos - start);
+  };
+  if (field("magic") != "PF") throw error(name + ": not a little-endian colour PFM file (it does not start with PF)");
+  auto integer = [&](const char* what) {
+    const std::string_view t = field(what);
+    long long x = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+    if (ec != std::errc() || end != t.data() + t.size())
+      throw error(name + ": the " + what + " '" + std::string(t) + "' is not an integer");
+    return x;
+  };
+  const long long w = integer("width"), h = integer("height");
+  const std::string_view st = field("scale");
   double scale = 0;
-  in >> magic >> w >> h >> scale;
-  if (magic != "PF" || !in || scale >= 0)
-    throw error(path.string() + ": not a little-endian colour PFM file");
-  image::check_size(w, h);
-  in.get();  // the single whitespace after the scale
+  const auto [end, ec] = std::from_chars(st.data(), st.data() + st.size(), scale);
+  if (ec != std::errc() || end != st.data() + st.size() || !std::isfinite(scale) || scale == 0)
+    throw error(name + ": the scale '" + std::string(st) + "' is not a finite non-zero number");
+  if (scale > 0) throw error(name + ": a big-endian PFM (positive scale); only little-endian is read");
+  try {
+    image::check_size(w, h);
+  } catch (const error& e) {
+    throw error(name + ": " + e.what());
+  }
+  if (pos >= bytes.size() || !std::isspace(static_cast<unsigned char>(bytes[pos])))
+    throw error(name + ": file ends early (truncated PFM)");
+  ++pos;  // the single whitespace after the scale
+  const std::size_t row = std::size_t(w) * 3 * sizeof(float), need = row * std::size_t(h);
+  if (bytes.size() - pos < need) throw error(name + ": file ends early (truncated PFM)");
+  if (bytes.size() - pos > need)
+    throw error(name + ": " + std::to_string(bytes.size() - pos - need) + " bytes after the last pixel");
   image img(static_cast<int>(w), static_cast<int>(h));
-  const std::size_t row = std::size_t(w) * 3 * sizeof(float);
-  for (long long y = h - 1; y >= 0; --y)
-    if (!in.read(reinterpret_cast<char*>(&img.at(0, int(y))), std::streamsize(row)))
-      throw error(path.string() + ": file ends early (truncated PFM)");
+  for (long long y = h - 1; y >= 0; --y, pos += row)
+    std::memcpy(&img.at(0, int(y)), bytes.data() + pos, row);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (!is_finite(img.at(x, y)))
+        throw error(name + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is NaN or infinite");
   return img;
+}
+inline image read_pfm(const std::filesystem::path& path) {
+  return parse_pfm(read_input_file(path), path.string());  // a regular file within limits().file_bytes
 }
 
 // Writes by extension: .png, .ppm or .pfm.
 inline void write_image(const image& img, const std::filesystem::path& path) {
+  check_output_name(path);  // "" or "folder/" say so, rather than "unknown image type ''"
   const auto ext = path.extension().string();
   if (ext == ".png") write_png(img, path);
   else if (ext == ".ppm") write_ppm(img, path);

@@ -45,6 +45,8 @@ template <class SampleFn, class PassFn>
 image render_progressive(int width, int height, const progressive_options& opt, SampleFn&& fn,
                          PassFn&& on_pass, progressive_totals* totals_out = nullptr) {
   if (opt.max_spp < 1) throw error("--spp must be at least 1, got " + std::to_string(opt.max_spp));
+  image::check_size(width, height);
+  check_render_size(width, height, opt.max_spp);  // before the images are made
   if (!(opt.time_budget >= 0)) throw error("--time-budget must not be negative");
   image mean(width, height), pass(width, height);
   std::vector<vec3> sum(mean.pixels.size(), vec3(0));

@@ -10,6 +10,7 @@
 // A sample that comes back NaN or infinite is counted and left out of the sum (so one bad path
 // does not turn the pixel black or white); the count is reported, because it signals a bug.
 #include <zraka/error.hpp>
+#include <zraka/limits.hpp>
 #include <zraka/image.hpp>
 #include <zraka/rng.hpp>
 #include <zraka/stopwatch.hpp>
@@ -22,6 +23,7 @@
 #include <exception>
 #include <mutex>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -50,10 +52,18 @@ struct sample_context {
   std::uint64_t& rays;       // add the rays you trace, if you want rays/s reported
 };
 
+// At most limits().threads_per_core per hardware thread: more gain nothing, and a typo such as
+// 100000 would otherwise end in std::terminate when the system runs out of threads.
 inline int resolve_threads(int requested) {
   if (requested < 0) throw error("--threads must be 0 (all) or positive, got " + std::to_string(requested));
+  const long long cap = max_threads();
+  if (requested > cap)
+    throw error("--threads " + std::to_string(requested) + " is more than " + std::to_string(cap) + " (" +
+                std::to_string(limits().threads_per_core) + " per core on this " +
+                std::to_string(std::max(1u, std::thread::hardware_concurrency())) + "-core machine) " +
+                raise_hint("threads_per_core"));
   if (requested > 0) return requested;
-  return std::max(1u, std::thread::hardware_concurrency());
+  return int(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 // [listing render]
@@ -64,6 +74,7 @@ render_stats render(image& img, int spp, std::uint64_t seed, SampleFn&& fn,
                     const render_options& opt = {}) {
   if (spp < 1) throw error("--spp must be at least 1, got " + std::to_string(spp));
   if (opt.tile < 1) throw error("tile size must be at least 1");
+  check_render_size(img.width, img.height, spp);
   const int threads = resolve_threads(opt.threads);
   const int tiles_x = (img.width + opt.tile - 1) / opt.tile;
   const int tiles_y = (img.height + opt.tile - 1) / opt.tile;
@@ -107,7 +118,13 @@ render_stats render(image& img, int spp, std::uint64_t seed, SampleFn&& fn,
   };
 
   std::vector<std::thread> pool;
-  for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+  try {
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+  } catch (const std::system_error& e) {  // no more threads: stop those started, then say so
+    next_tile = tiles;
+    for (auto& th : pool) th.join();
+    throw error("cannot start " + std::to_string(threads) + " threads (" + e.what() + "); try fewer --threads");
+  }
   const bool bar = opt.progress && isatty(STDERR_FILENO);
   if (bar) {  // this thread draws the bar while the others work, then joins in
     std::thread drawer([&] {

@@ -13,19 +13,25 @@
 //
 // The defaults come from the structs themselves (render_settings, camera_t, material, texture,
 // point_light_t) and from scene_file_defaults below, so there is one place for each.
+// Sizes are bounded by limits() (limits.hpp): YAML nodes after alias expansion, the triangles
+// of the whole scene (checked before a mesh is tessellated), pixels and samples, file sizes; and
+// every coordinate, also after its transform, lies within max_coordinate.
 // Types a program adds (a user shape, a custom BSDF) are read by name through a scene_registry
 // (scene_registry.hpp) passed to parse_scene / load_scene_file, with the same checks (scene_node).
-// Needs yaml-cpp and tinyobjloader (link yaml-cpp and tinyobjloader::tinyobjloader).
+// Needs yaml-cpp (link yaml-cpp).
 #include <zraka/affine.hpp>
 #include <zraka/bpt.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
+#include <zraka/input_file.hpp>
+#include <zraka/limits.hpp>
+#include <zraka/obj_file.hpp>
 #include <zraka/resources.hpp>
 #include <zraka/scene.hpp>
 #include <zraka/scene_registry.hpp>
 #include <zraka/tessellate.hpp>
 
-#include <tiny_obj_loader.h>
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -60,68 +66,8 @@ struct loaded_scene {
 
 namespace detail {
 
-// OBJ (Wavefront) to mesh, thesis Def 4.1.3 done fully (erratum C9): v, vn; faces f v, v/vt,
-// v//vn, v/vt/vn; negative indices count back from the last vertex; polygons are fanned into
-// triangles. vn are per-vertex normals referenced by the faces; a vertex used with two different
-// normals becomes two mesh vertices. Normals are kept only if every face corner has one
-// (otherwise the mesh is shaded flat). Texture coordinates are read but not used.
-inline mesh load_obj(const std::filesystem::path& path) {
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
-  config.mtl_search_path = path.parent_path().string();
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path.string(), config)) {
-    std::string msg = reader.Error();
-    while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
-    throw error(path.string() + ": " + (msg.empty() ? "cannot read the OBJ file" : msg));
-  }
-  const tinyobj::attrib_t& a = reader.GetAttrib();
-  bool all_normals = true;
-  std::size_t corners = 0;
-  const long long nv = static_cast<long long>(a.vertices.size() / 3), nn = static_cast<long long>(a.normals.size() / 3);
-  for (const auto& s : reader.GetShapes())
-    for (const auto& idx : s.mesh.indices) {
-      // The loader does not catch every index beyond the end; a wrong one must not read past it.
-      if (idx.vertex_index < 0 || idx.vertex_index >= nv)
-        throw error(path.string() + ": a face refers to vertex " + std::to_string(idx.vertex_index + 1) +
-                    ", but there are only " + std::to_string(nv));
-      if (idx.normal_index >= nn)
-        throw error(path.string() + ": a face refers to normal " + std::to_string(idx.normal_index + 1) +
-                    ", but there are only " + std::to_string(nn));
-      all_normals = all_normals && idx.normal_index >= 0;
-      ++corners;
-    }
-  if (corners == 0) throw error(path.string() + ": no faces");
-  mesh m;
-  std::map<std::pair<int, int>, std::uint32_t> vertex_of;  // (position, normal) -> mesh vertex
-  // [listing obj-vertex]
-  auto vertex = [&](const tinyobj::index_t& idx) {
-    const int n = all_normals ? idx.normal_index : -1;
-    const auto [it, is_new] = vertex_of.try_emplace({idx.vertex_index, n}, std::uint32_t(m.positions.size()));
-    if (is_new) {
-      const std::size_t v = std::size_t(idx.vertex_index) * 3;
-      m.positions.push_back(vec3(a.vertices[v], a.vertices[v + 1], a.vertices[v + 2]));
-      if (!is_finite(m.positions.back())) throw error(path.string() + ": a vertex is not finite");
-      if (n >= 0) {
-        const std::size_t k = std::size_t(n) * 3;
-        m.normals.push_back(normalize_or_zero(vec3(a.normals[k], a.normals[k + 1], a.normals[k + 2])));
-      }
-    }
-    return it->second;
-  };
-  // [end]
-  for (const auto& s : reader.GetShapes()) {
-    std::size_t first = 0;
-    for (const unsigned char fv : s.mesh.num_face_vertices) {
-      if (fv != 3) throw error(path.string() + ": a face with " + std::to_string(fv) + " vertices after triangulation");
-      m.triangles.push_back({vertex(s.mesh.indices[first]), vertex(s.mesh.indices[first + 1]),
-                             vertex(s.mesh.indices[first + 2])});
-      first += 3;
-    }
-  }
-  return m;
-}
+// The OBJ reader moved to obj_file.hpp (issue 12); the old name stays for callers.
+using zraka::load_obj;
 
 class scene_reader;
 
@@ -177,10 +123,13 @@ class scene_reader {
     YAML::Node loaded;
     try {
       loaded = YAML::Load(text);
-    } catch (const YAML::ParserException& e) {
+    } catch (const YAML::DeepRecursion& e) {
+      throw error(where(e.mark) + "YAML nesting deeper than " + std::to_string(e.depth() - 1) + " levels");
+    } catch (const YAML::Exception& e) {  // ParserException, DeepRecursion (nesting beyond yaml-cpp's 2000)
       throw error(where(e.mark) + "YAML syntax: " + e.msg);
     }
     const YAML::Node& root = loaded;  // const: looking up a key must not add it
+    check_yaml_size(root);
     if (!root || root.IsNull()) throw error(name_ + ": the scene file is empty");
     if (!root.IsMap()) fail(root, "", "a scene file is a map with the sections settings, camera, materials, lights, objects");
     keys(root, "", {"settings", "camera", "materials", "lights", "objects"});
@@ -207,6 +156,7 @@ class scene_reader {
   loaded_scene out_;
   YAML::Node resolved_;
   std::map<std::string, int> material_index_;
+  std::uint64_t triangles_ = 0;  // so far, against limits().triangles
 
   // ---------------------------------------------------------------- errors
   std::string where(const YAML::Mark& m) const {
@@ -223,6 +173,44 @@ class scene_reader {
     if (n.IsScalar()) return "'" + n.Scalar() + "'";
     if (n.IsSequence() && n.size() == 0) return "an empty list";
     return n.IsSequence() ? "a list" : n.IsMap() ? "a map" : "nothing";
+  }
+
+  // ---------------------------------------------------------------- limits
+  // Counts the nodes as a reader walking the tree meets them: an alias counts each time it is
+  // used, so a few lines that double at every level (the "billion laughs") stop here, not in the
+  // memory; an alias inside its own anchor (a cycle) stops here too.
+  void check_yaml_size(const YAML::Node& root) const {
+    const std::uint64_t limit = limits().yaml_nodes;
+    std::uint64_t count = 0;
+    std::vector<YAML::Node> todo{root};
+    while (!todo.empty()) {
+      const YAML::Node n = todo.back();
+      todo.pop_back();
+      ++count;
+      const std::uint64_t children = n.IsSequence() ? n.size() : n.IsMap() ? 2 * n.size() : 0;
+      if (count + todo.size() + children > limit)
+        fail(n, "", "the scene has more than " + std::to_string(limit) +
+                        " YAML nodes (an alias counts each time it is used) " + raise_hint("yaml_nodes"));
+      if (n.IsSequence())
+        for (const auto& c : n) todo.push_back(c);
+      else if (n.IsMap())
+        for (const auto& kv : n) todo.push_back(kv.first), todo.push_back(kv.second);
+    }
+  }
+  // Every triangle of the scene counts against limits().triangles, before it is made.
+  void add_triangles(std::uint64_t n, const YAML::Node& at, const std::string& field) {
+    const std::uint64_t limit = limits().triangles;
+    if (n > limit || triangles_ > limit - n)
+      fail(at, field, "the scene would have " + std::to_string(triangles_ + n) + " triangles, more than the limit of " +
+                          std::to_string(limit) + " " + raise_hint("triangles"));
+    triangles_ += n;
+  }
+  // A point or vector after its transform: finite and within max_coordinate.
+  template <class V> void check_placed(const V& v, const YAML::Node& at, const std::string& field) const {
+    for (int i = 0; i < 3; ++i)
+      if (!(std::abs(double(v[i])) <= max_coordinate))
+        fail(at, field, "after the transform a coordinate is " + num(double(v[i])).Scalar() +
+                            ", beyond +-1e18 (its square would overflow)");
   }
 
   // [listing strict-keys]
@@ -254,6 +242,7 @@ class scene_reader {
       fail(n, field, "expected a number, got " + scalar_text(n));
     }
     if (!std::isfinite(x)) fail(n, field, "must be finite, got " + n.Scalar());
+    if (std::abs(x) > max_coordinate) fail(n, field, "must be within +-1e18 (its square would overflow), got " + n.Scalar());
     return x;
   }
   long long integer(const YAML::Node& n, const std::string& field, long long lo, long long hi) const {
@@ -322,6 +311,7 @@ class scene_reader {
       if (n["ambient"]) out_.sc.ambient = colour(n["ambient"], "settings.ambient");
       try {
         image::check_size(s.width, s.height);
+        check_render_size(s.width, s.height, s.spp);
       } catch (const error& e) {
         fail(n, "settings", e.what());
       }
@@ -348,7 +338,11 @@ class scene_reader {
       if (n["focus_distance"]) c.focus_distance = number(n["focus_distance"], "camera.focus_distance");
     }
     try {
-      (void)out_.sc.prepared_camera();  // throws for a camera that defines no view
+      const auto p = out_.sc.prepared_camera();  // throws for a camera that defines no view
+      for (const vec3& v : {p.corner, p.horizontal, p.vertical})
+        if (!is_finite(v) || std::abs(v.x) > max_coordinate || std::abs(v.y) > max_coordinate ||
+            std::abs(v.z) > max_coordinate)
+          throw error("the image plane reaches beyond +-1e18 (focus_distance or the distance to look_at too large)");
     } catch (const error& e) {
       std::string msg = e.what();
       if (msg.rfind("camera: ", 0) == 0) msg = msg.substr(8);
@@ -636,7 +630,8 @@ class scene_reader {
       if (!(std::abs(s.x) == std::abs(s.y) && std::abs(s.y) == std::abs(s.z)))
         fail(o["transform"], label + ".transform.scale", "a sphere takes only a uniform scale");
       const sphere sp{a.point(c), rad * std::abs(s.x)};
-      if (!std::isfinite(sp.radius) || !is_finite(sp.center)) fail(o, label, "the transformed sphere is not finite");
+      check_placed(sp.center, o, label + ".center");
+      check_placed(vec3(sp.radius), o, label + ".radius");
       sc.add(sp, mat);
       r["center"] = flow(c);
       r["radius"] = num(rad);
@@ -644,6 +639,8 @@ class scene_reader {
       const vec3 p = o["point"] ? vector3(o["point"], label + ".point") : vec3(0);
       const vec3 nn = o["normal"] ? vector3(o["normal"], label + ".normal") : vec3(0, 1, 0);
       if (normalize_or_zero(nn) == vec3(0)) fail(o["normal"], label + ".normal", "the normal must not be zero");
+      check_placed(a.point(p), o, label + ".point");
+      if (normalize_or_zero(a.normal(nn)) == vec3(0)) fail(o, label + ".normal", "the transformed normal is zero or not finite");
       sc.add(plane::from_point_normal(a.point(p), a.normal(nn)), mat);
       r["point"] = flow(p);
       r["normal"] = flow(nn);
@@ -651,12 +648,18 @@ class scene_reader {
       const triangle t{vector3(required(o, "a", label), label + ".a"), vector3(required(o, "b", label), label + ".b"),
                        vector3(required(o, "c", label), label + ".c")};
       if (t.normal() == vec3(0)) fail(o, label, "the three vertices are on one line: the triangle has no area");
+      for (const vec3& v : {t.a, t.b, t.c}) check_placed(a.point(v), o, label);
+      add_triangles(1, o, label);
       sc.add(triangle{a.point(t.a), a.point(t.b), a.point(t.c)}, mat);
       r["a"] = flow(t.a);
       r["b"] = flow(t.b);
       r["c"] = flow(t.c);
     } else if (type == "quad") {
       const quad q = quad_of(o, label);
+      check_placed(a.point(q.corner), o, label + ".corner");
+      check_placed(a.point(q.corner + q.u + q.v), o, label);
+      check_placed(a.vector(q.u), o, label + ".u");
+      check_placed(a.vector(q.v), o, label + ".v");
       sc.add(quad{a.point(q.corner), a.vector(q.u), a.vector(q.v)}, mat);
       r["corner"] = flow(q.corner);
       r["u"] = flow(q.u);
@@ -665,6 +668,10 @@ class scene_reader {
       const vec3 lo = vector3(required(o, "min", label), label + ".min");
       const vec3 hi = vector3(required(o, "max", label), label + ".max");
       if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) fail(o, label, "min must be below max on every axis");
+      for (const vec3& v : {hi - lo, lo, hi, vec3(lo.x, hi.y, lo.z), vec3(hi.x, lo.y, lo.z), vec3(lo.x, lo.y, hi.z)})
+        check_placed(v == hi - lo ? v : a.point(v), o, label);  // the extents, and the corners placed
+      for (const vec3& v : {vec3(hi.x, hi.y, lo.z), vec3(hi.x, lo.y, hi.z), vec3(lo.x, hi.y, hi.z)})
+        check_placed(a.point(v), o, label);
       for (const quad& q : box_faces(lo, hi)) sc.add(quad{a.point(q.corner), a.vector(q.u), a.vector(q.v)}, mat);
       r["min"] = flow(lo);
       r["max"] = flow(hi);
@@ -675,18 +682,28 @@ class scene_reader {
                                  : scene_file_defaults::bezier_divs;
       if (type == "bezier") r["divs"] = divs;
       mesh msh;
+      patch_set ps;
       try {
-        if (type == "mesh") {
-          msh = load_obj(file);
-          transform_mesh(msh, a);
-        } else {
-          msh = tessellate(load_bpt(file).all_patches(), divs, a);
-        }
+        if (type == "mesh") msh = load_obj(file);
+        else ps = load_bpt(file);
       } catch (const error& e) {  // name the file as the scene does, not by its full path
         std::string msg = e.what();
         if (msg.rfind(file.string(), 0) == 0) msg = o["file"].Scalar() + msg.substr(file.string().size());
         fail(o["file"], label + ".file", msg);
       }
+      if (type == "mesh") {
+        add_triangles(msh.triangles.size(), o["file"], label + ".file");
+        transform_mesh(msh, a);
+      } else {
+        // Before the work: P patches at divs give P * 2 divs^2 triangles.
+        add_triangles(ps.patches.size() * triangles_per_patch(divs), o["divs"] ? o["divs"] : o, label + ".divs");
+        try {
+          msh = tessellate(ps.all_patches(), divs, a);
+        } catch (const error& e) {
+          fail(o, label, e.what());
+        }
+      }
+      for (const vec3& p : msh.positions) check_placed(p, o, label);
       sc.add(std::move(msh), mat);
     }
     r["material"] = mat_name;
@@ -863,11 +880,7 @@ inline loaded_scene parse_scene(const std::string& text, const std::string& name
 // Reads a scene file: a path as given, or relative to the resource root (resources.hpp).
 inline loaded_scene load_scene_file(const std::filesystem::path& path, const scene_registry& types = {}) {
   const std::filesystem::path p = resource_path(path.string());
-  std::ifstream in(p);
-  if (!in) throw error("cannot open scene file " + p.string());
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), path.string(), p.parent_path(), types);
+  return parse_scene(read_input_file(p), path.string(), p.parent_path(), types);
 }
 
 }  // namespace zraka

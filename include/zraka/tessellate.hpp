@@ -11,6 +11,7 @@
 #include <zraka/affine.hpp>
 #include <zraka/bezier_patch.hpp>
 #include <zraka/error.hpp>
+#include <zraka/limits.hpp>
 #include <zraka/mesh.hpp>
 
 #include <string>
@@ -59,6 +60,9 @@ template <class T> mesh_t<T> tessellate(const std::vector<bezier_patch_t<T>>& pa
   mesh_t<T> m;
   const std::size_t grid = std::size_t(divs + 1) * std::size_t(divs + 1);
   if (divs >= 1 && divs <= max_tessellation_divs) {
+    // Before the work: the size is known, and a large divs squares into gigabytes.
+    check_limit(std::uint64_t(patches.size()) * triangles_per_patch(divs), limits().triangles, "triangles",
+                "the triangle count of " + std::to_string(patches.size()) + " patches at divs " + std::to_string(divs));
     m.positions.reserve(patches.size() * grid);
     m.normals.reserve(patches.size() * grid);
     m.triangles.reserve(patches.size() * triangles_per_patch(divs));

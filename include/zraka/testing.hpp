@@ -31,6 +31,7 @@
 #include <zraka/hit.hpp>
 #include <zraka/image.hpp>
 #include <zraka/image_io.hpp>
+#include <zraka/input_file.hpp>
 #include <zraka/ray.hpp>
 #include <zraka/rng.hpp>
 #include <zraka/spawn.hpp>
@@ -230,9 +231,21 @@ inline result images_match(const image& got, const image& reference, const image
 }
 
 // A PNG as display values in [0,1] (8-bit sRGB / 255).
+// Only a regular file within limits().file_bytes, and the size in its header is checked against
+// the image limits before anything is decoded (a small PNG can claim gigapixels).
 inline image read_png_display(const std::filesystem::path& path) {
+  const std::string bytes = read_input_file(path);
+  const auto* in = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int len = bytes.size() > std::size_t(std::numeric_limits<int>::max()) ? 0 : int(bytes.size());
   int w = 0, h = 0, channels = 0;
-  unsigned char* data = stbi_load(path.string().c_str(), &w, &h, &channels, 3);
+  if (!stbi_info_from_memory(in, len, &w, &h, &channels))
+    throw error("cannot read PNG " + path.string() + ": " + stbi_failure_reason());
+  try {
+    image::check_size(w, h);
+  } catch (const error& e) {
+    throw error(path.string() + ": " + e.what());
+  }
+  unsigned char* data = stbi_load_from_memory(in, len, &w, &h, &channels, 3);
   if (!data) throw error("cannot read PNG " + path.string() + ": " + stbi_failure_reason());
   image img;
   try {

@@ -7,7 +7,8 @@
 //  * intersect_edge_tests: the thesis's geometric method (plane, then three edge tests), fixed;
 //  * intersect_moller_trumbore: Moller & Trumbore (1997), Cramer's rule, no plane equation;
 //  * intersect_watertight: Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection" (JCGT
-//    2013), with a t that is accepted only when its sign is certain (as in pbrt, 3rd ed., 3.9).
+//    2013), with a t that is accepted only when its sign is certain: the origin's distance to
+//    the plane and the direction's slope to it are both beyond their rounding errors.
 // intersect() without a method is the watertight one: a ray through an edge or a vertex shared by
 // two triangles hits at least one of them, and a spawned ray never hits its own triangle.
 // Every method: a degenerate triangle (computed N = 0) and NaN/inf input are never hit; hits
@@ -15,6 +16,8 @@
 #include <zraka/hit.hpp>
 #include <zraka/ray.hpp>
 #include <zraka/spawn.hpp>
+
+#include <glm/gtc/type_ptr.hpp>
 
 #include <cmath>
 #include <string_view>
@@ -122,9 +125,20 @@ inline double difference_of_products(double a, double b, double c, double d) {
   const double cd_error = std::fma(-c, d, cd);  // cd - c*d, exactly
   return std::fma(a, b, -cd) + cd_error;
 }
+// x86 without FMA instructions (the default x86-64 target) cannot fuse, so there the paper's
+// cheaper rule is exact: only a 0 is recomputed. Any other target, or an unknown compiler, filters.
+#if (defined(__x86_64__) || defined(__i386__)) && !defined(__FMA__) && !defined(__FMA4__)
+inline constexpr bool may_fuse = false;
+#else
+inline constexpr bool may_fuse = true;
+#endif
 template <class T> T edge_function(T a, T b, T c, T d) {
   const T e = a * b - c * d;
-  if (std::abs(e) > gamma<T>(3) * (std::abs(a * b) + std::abs(c * d))) return e;  // sign certain
+  if constexpr (may_fuse) {
+    if (std::abs(e) > gamma<T>(3) * (std::abs(a * b) + std::abs(c * d))) return e;  // certain
+  } else if (e != T(0)) {
+    return e;  // fl(fl(ab) - fl(cd)): the right sign whenever not 0
+  }
   return difference_of_products(a, b, c, d);
 }
 // [end]
@@ -136,53 +150,116 @@ template <class T> T edge_function(T a, T b, T c, T d) {
 // edge functions of one sign. An edge function depends only on its edge's two vertices, and
 // its sign is computed exactly (see edge_function), so the two triangles sharing an
 // edge always see the ray on opposite sides of it, or both exactly on it (edges are inclusive).
+// The test is split in its per-ray half (watertight_ray: the permutation and the shear, which
+// the mesh BVH prepares once per ray in bvh_ray) and its per-triangle half (watertight_test),
+// so that triangle_bvh.hpp's leaf calls the very same code and gives the same bits.
+namespace detail {
+// [listing watertight-ray]
+template <class T> struct watertight_ray {
+  vec3_t<T> origin, direction;
+  int kx, ky, kz;  // the axes that become x, y and z
+  T sx, sy, sz;    // the shear that makes the direction (0, 0, 1)
+  T ox, oy, oz;    // the origin's coordinates kx, ky, kz
+  explicit watertight_ray(const ray_t<T>& r) : origin(r.origin), direction(r.direction) {
+    const vec3_t<T>& D = direction;
+    const vec3_t<T> ad = glm::abs(D);
+    kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+    kx = (kz + 1) % 3;
+    ky = (kx + 1) % 3;
+    if (D[kz] < T(0)) std::swap(kx, ky);  // keep the winding
+    sx = D[kx] / D[kz];
+    sy = D[ky] / D[kz];
+    sz = T(1) / D[kz];
+    ox = origin[kx];
+    oy = origin[ky];
+    oz = origin[kz];
+  }
+};
+// [end]
+
+// The mesh BVH runs this once per triangle of a leaf: GCC would rather call it, which costs
+// the BVH about a tenth of its speed, so it is inlined by force where the compiler knows how.
+#if defined(__GNUC__)
+#define ZRAKA_FORCE_INLINE [[gnu::always_inline]] inline
+#else
+#define ZRAKA_FORCE_INLINE inline
+#endif
+
 // [listing watertight]
+// True when the ray passes inside the triangle ABC (edges inclusive) and does not see it
+// edge-on; then t is the hit's distance and (u, v) the weights of B and C, not yet checked
+// against any interval.
+template <class T>
+ZRAKA_FORCE_INLINE bool watertight_test(const watertight_ray<T>& r, const vec3_t<T>& A,
+                                        const vec3_t<T>& B, const vec3_t<T>& C, T& t, T& u, T& v) {
+  // q = p - O, permuted, then sheared: (x, y) and q[kz]; z = sz q[kz] only if t is wanted.
+  auto to_ray_space = [&](const vec3_t<T>& p) {
+    const T* v = glm::value_ptr(p);  // indexed in memory: vec3's operator[] is a switch
+    const T qx = v[r.kx] - r.ox, qy = v[r.ky] - r.oy, qz = v[r.kz] - r.oz;
+    return vec3_t<T>(qx - r.sx * qz, qy - r.sy * qz, qz);
+  };
+  const vec3_t<T> a = to_ray_space(A), b = to_ray_space(B), c = to_ray_space(C);
+
+  // e_a is twice the signed area of (ray, B, C): the weight of A, and so on.
+  const T e_a = edge_function(c.x, b.y, c.y, b.x);
+  const T e_b = edge_function(a.x, c.y, a.y, c.x);
+  if (std::min(e_a, e_b) < T(0) && std::max(e_a, e_b) > T(0)) return false;  // early out
+  const T e_c = edge_function(b.x, a.y, b.y, a.x);
+  if (std::min(e_c, std::min(e_a, e_b)) < T(0) && std::max(e_c, std::max(e_a, e_b)) > T(0))
+    return false;  // the ray passes outside an edge: weights of both signs
+  const T det = e_a + e_b + e_c;  // twice the projected area; 0: seen edge-on
+  if (!(std::abs(det) > T(0))) return false;
+  const T inv_det = T(1) / det;
+  t = (e_a * (r.sz * a.z) + e_b * (r.sz * b.z) + e_c * (r.sz * c.z)) * inv_det;
+  u = e_b * inv_det;
+  v = e_c * inv_det;
+  return true;
+}
+// [end]
+
+// [listing watertight-conservative-t]
+// Is the true t of the plane hit certainly positive? t = s / (n.D), with n = (B-A) x (C-A) and
+// s = n.(A-O) the origin's signed distance to the plane times |n|: so t > 0 exactly when s and
+// n.D have one sign, and we accept only when both signs are beyond their rounding errors. This
+// is what stops a ray spawned from the triangle (it leaves the plane, so its t is negative,
+// or its s is lost in rounding) without rejecting real hits: unlike a bound on the error of t
+// through the shear and the edge functions, whose relative size grows like (distance / size)
+// and 1/det, s and n.D stay well conditioned for slivers, tiny far triangles and grazing rays,
+// computed in double (float's n of a sliver of aspect 1e-7 would have no correct digit).
+// Error bounds, unit roundoff u of double: B-A and C-A round once each, a product of two and
+// their difference once more, so |dn| <= gamma(4) n_abs (n_abs: the cross product's terms
+// taken in absolute value); A-O rounds once and the dot product three times: |ds| <=
+// gamma(8) n_abs.|A-O|, |d(n.D)| <= gamma(7) n_abs.|D|, taken with one spare rounding each.
+template <class T>
+bool t_certainly_positive(const vec3_t<T>& A, const vec3_t<T>& B, const vec3_t<T>& C,
+                          const vec3_t<T>& O, const vec3_t<T>& D) {
+  const vec3 a(A), e1 = vec3(B) - a, e2 = vec3(C) - a, w = a - vec3(O), d(D);
+  const vec3 n = glm::cross(e1, e2);
+  const vec3 n_abs(std::abs(e1.y * e2.z) + std::abs(e1.z * e2.y),
+                   std::abs(e1.z * e2.x) + std::abs(e1.x * e2.z),
+                   std::abs(e1.x * e2.y) + std::abs(e1.y * e2.x));
+  const double s = glm::dot(n, w), n_dot_d = glm::dot(n, d);
+  return std::abs(s) > gamma<double>(9) * glm::dot(n_abs, glm::abs(w)) &&
+         std::abs(n_dot_d) > gamma<double>(8) * glm::dot(n_abs, glm::abs(d)) &&
+         (s > 0) == (n_dot_d > 0);
+}
+// [end]
+}  // namespace detail
+
+// [listing watertight-intersect]
 template <class T>
 bool intersect_watertight(const triangle_t<T>& tri, const ray_t<T>& r, T t_min, T t_max,
                           hit_t<T>& rec) {
   if (!detail::can_hit(tri, r)) return false;
-  const vec3_t<T>& D = r.direction;
-  const vec3_t<T> ad = glm::abs(D);
-  const int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
-  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
-  if (D[kz] < T(0)) std::swap(kx, ky);  // keep the winding
-  const T sx = D[kx] / D[kz], sy = D[ky] / D[kz], sz = T(1) / D[kz];
-  auto to_ray_space = [&](const vec3_t<T>& v) {
-    const vec3_t<T> q = v - r.origin;
-    return vec3_t<T>(q[kx] - sx * q[kz], q[ky] - sy * q[kz], sz * q[kz]);
-  };
-  const vec3_t<T> a = to_ray_space(tri.a), b = to_ray_space(tri.b), c = to_ray_space(tri.c);
-
-  // e_a is twice the signed area of (ray, B, C): the weight of A, and so on.
-  const T e_a = detail::edge_function(c.x, b.y, c.y, b.x);
-  const T e_b = detail::edge_function(a.x, c.y, a.y, c.x);
-  const T e_c = detail::edge_function(b.x, a.y, b.y, a.x);
-  if ((e_a < T(0) || e_b < T(0) || e_c < T(0)) && (e_a > T(0) || e_b > T(0) || e_c > T(0)))
-    return false;  // the ray passes outside an edge
-  const T det = e_a + e_b + e_c;  // twice the projected area; 0: seen edge-on
-  if (!(std::abs(det) > T(0))) return false;
-  const T inv_det = T(1) / det;
-  const T t = (e_a * a.z + e_b * b.z + e_c * c.z) * inv_det;
+  T t, u, v;
+  if (!detail::watertight_test(detail::watertight_ray<T>(r), tri.a, tri.b, tri.c, t, u, v))
+    return false;
   if (!(t > t_min && t < t_max)) return false;
-  // [end]
-
-  // [listing watertight-conservative-t]
-  // Accept t only if it exceeds the bound on its own rounding error, so that t > 0 is certain.
-  // With X, Y, Z the largest |x|, |y|, |z| of the vertices: the shear costs x, y at most
-  // gamma(7)(X + Z) (|sx|, |sy| <= 1 and |q[kz]| <= |z|), z at most gamma(3) Z; an edge function
-  // then errs by 2(gamma(2) X Y + dx Y + X dy), and the sum for t by 3(gamma(3) E Z + de Z + E dz).
-  const T X = max_component(glm::abs(vec3_t<T>(a.x, b.x, c.x)));
-  const T Y = max_component(glm::abs(vec3_t<T>(a.y, b.y, c.y)));
-  const T Z = max_component(glm::abs(vec3_t<T>(a.z, b.z, c.z)));
-  const T E = max_component(glm::abs(vec3_t<T>(e_a, e_b, e_c)));
-  const T dx = gamma<T>(7) * (X + Z), dy = gamma<T>(7) * (Y + Z), dz = gamma<T>(3) * Z;
-  const T de = T(2) * (gamma<T>(2) * X * Y + dx * Y + X * dy);
-  const T dt = T(3) * (gamma<T>(3) * E * Z + de * Z + E * dz) * std::abs(inv_det);
-  if (!(t > dt)) return false;
-  fill_triangle_hit(tri, r, t, e_b * inv_det, e_c * inv_det, rec);
+  if (!detail::t_certainly_positive(tri.a, tri.b, tri.c, r.origin, r.direction)) return false;
+  fill_triangle_hit(tri, r, t, u, v, rec);
   return true;
-  // [end]
 }
+// [end]
 
 // The method a program picks at run time (chapter 1.5's --method).
 enum class triangle_method { edge_tests, moller_trumbore, watertight };

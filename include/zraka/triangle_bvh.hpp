@@ -5,15 +5,16 @@
 // * four children per node (the builder's binary tree collapsed two levels into one), their
 //   boxes stored axis by axis (lo.x of the four, then lo.y, ...), so that the four slab tests
 //   are one loop the compiler turns into SIMD instructions; 128 bytes, two cache lines;
-// * the triangles copied in leaf order as the data Moller-Trumbore needs, precomputed: vertex A
-//   and the edges B-A, C-A, 40 bytes each, so a leaf's triangles are contiguous in memory;
+// * the triangles copied in leaf order as the watertight test (triangle.hpp) wants them: the
+//   vertices A, B, C and the input index, 40 bytes each, so a leaf's triangles are contiguous
+//   in memory;
 // * a ray prepared once (bvh_ray): the reciprocal direction and, per axis, which side of a box
-//   is near, so a box test has no branch;
+//   is near, so a box test has no branch; and the watertight test's axis permutation and shear;
 // * front-to-back order: the children hit are pushed on a small fixed stack by entry distance,
 //   nearest on top, and skipped when popped if a hit is already nearer. No allocation per ray.
 // Hits report the triangle's index in the input, t and the barycentrics (u, v) of triangle.hpp's
-// convention P = (1-u-v) A + u B + v C, bit for bit what intersect_moller_trumbore() gives on the
-// same float triangle; among hits at exactly the same t the lowest index wins, so the result
+// convention P = (1-u-v) A + u B + v C, bit for bit what intersect_watertight() gives on the
+// same float triangle (the leaf calls the same two functions); among hits at exactly the same t the lowest index wins, so the result
 // never depends on the tree.
 #include <zraka/bvh.hpp>
 #include <zraka/mesh.hpp>
@@ -38,10 +39,11 @@ struct triangle_bvh_hit {
 };
 
 // [listing packed-triangle]
-// One triangle as Moller-Trumbore wants it: A and the two edges, computed once at build time.
+// One triangle as the watertight test wants it: its vertices as they are (an edge B - A would
+// be rounded, and two triangles sharing an edge must see the very same numbers).
 struct packed_triangle {
-  vec3_t<float> a, e1, e2;  // e1 = B - A, e2 = C - A
-  std::uint32_t id;         // index in the input
+  vec3_t<float> a, b, c;
+  std::uint32_t id;  // index in the input
 };
 // [end]
 static_assert(sizeof(packed_triangle) == 40);
@@ -62,14 +64,16 @@ static_assert(sizeof(triangle_bvh_node4) == 128);
 // [listing bvh-ray]
 // A ray prepared for many box and triangle tests: the reciprocal direction, and per axis which
 // side of a box is near: lo where the direction is positive, hi where it is negative (by the
-// sign bit, so that -0, whose reciprocal is -inf, counts as negative).
+// sign bit, so that -0, whose reciprocal is -inf, counts as negative). And the watertight
+// test's per-ray half: the axis permutation and the shear.
 struct bvh_ray {
   vec3_t<float> origin, direction, inv_direction;
   std::array<int, 3> near_row, far_row;  // rows of triangle_bvh_node4::box
-  bool valid;
+  detail::watertight_ray<float> shear;
+  bool valid;  // as triangle.hpp's can_hit() asks of a ray
   explicit bvh_ray(const ray_t<float>& r)
-      : origin(r.origin), direction(r.direction), inv_direction(1.0f / r.direction),
-        valid(r.valid()) {
+      : origin(r.origin), direction(r.direction), inv_direction(1.0f / r.direction), shear(r),
+        valid(r.valid() && is_finite(r.direction)) {
     for (int a = 0; a < 3; ++a) {
       const bool negative = std::signbit(direction[a]);
       near_row[a] = negative ? 3 + a : a;
@@ -166,7 +170,7 @@ class triangle_bvh {
     depth_ = b.depth;
     tris_.reserve(b.order.size());
     for (const std::uint32_t i : b.order)  // leaf order: a leaf's index points into tris_
-      tris_.push_back({tris[i].a, tris[i].b - tris[i].a, tris[i].c - tris[i].a, i});
+      tris_.push_back({tris[i].a, tris[i].b, tris[i].c, i});
     if (b.empty()) return;
     nodes_.reserve(b.nodes.size() / 3 + 1);
     collapse(b, {0});
@@ -260,26 +264,18 @@ class triangle_bvh {
   }
   // [end]
 
-  // [listing packed-mt]
-  // Moller-Trumbore on the packed data, the same arithmetic in the same order as triangle.hpp's
-  // intersect_moller_trumbore() (so the same bits); t in (t_min, t_max). A hit at exactly the
-  // t of the hit found so far (h.t) counts too if its index is lower: the nearest hit is then
-  // the smallest (t, index), like a brute force loop in index order, whatever order the BVH
-  // visits the triangles in.
+  // [listing packed-watertight]
+  // triangle.hpp's intersect_watertight() on the packed data: the same two calls (the
+  // per-triangle half of the test, then the certainty of t > 0), so the same bits; t in
+  // (t_min, t_max). A hit at exactly the t of the hit found so far (h.t) counts too if its index
+  // is lower: the nearest hit is then the smallest (t, index), like a brute force loop in index
+  // order, whatever order the BVH visits the triangles in.
   static bool test(const packed_triangle& tri, const bvh_ray& r, float t_min, float t_max,
                    triangle_bvh_hit& h) {
-    const vec3_t<float> p = glm::cross(r.direction, tri.e2);
-    const float det = glm::dot(tri.e1, p);
-    if (!(det != 0.0f) || !std::isfinite(det)) return false;
-    const float inv_det = 1.0f / det;
-    const vec3_t<float> s = r.origin - tri.a;
-    const float u = glm::dot(s, p) * inv_det;
-    if (!(u >= 0.0f && u <= 1.0f)) return false;
-    const vec3_t<float> q = glm::cross(s, tri.e1);
-    const float v = glm::dot(r.direction, q) * inv_det;
-    if (!(v >= 0.0f && u + v <= 1.0f)) return false;
-    const float t = glm::dot(tri.e2, q) * inv_det;
+    float t, u, v;
+    if (!detail::watertight_test(r.shear, tri.a, tri.b, tri.c, t, u, v)) return false;
     if (!(t > t_min && (t < t_max || (t == h.t && tri.id < h.triangle)))) return false;
+    if (!detail::t_certainly_positive(tri.a, tri.b, tri.c, r.origin, r.direction)) return false;
     h = {t, u, v, tri.id};
     return true;
   }
@@ -291,6 +287,11 @@ class triangle_bvh {
     float t_enter;
   };
   static constexpr int stack_size = 3 * bvh_max_depth + 4;  // at most 3 left behind per level
+  // A box's entry t and a triangle's t round differently: a triangle on a box face (a shared
+  // edge of two leaves, say) may hit at a t an ulp or two below the box's entry. So a box is
+  // passed over only when it starts more than 32 ulps beyond the best hit, and a tie at equal
+  // t (won by the lower index) or a hit an ulp nearer is never lost to the order of the walk.
+  static constexpr float cull_margin = 1.0f + 0x1p-18f;
 
   // [listing triangle-traverse]
   // Pop the nearest entry; skip it if a hit is already nearer than its box; test a leaf's
@@ -305,7 +306,7 @@ class triangle_bvh {
     bool found = false;
     while (top > 0) {
       const entry e = stack[--top];
-      if (e.t_enter > t_max) continue;
+      if (e.t_enter > t_max * cull_margin) continue;
       if (e.count) {
         const packed_triangle* tri = &tris_[e.child];
         for (std::uint32_t k = 0; k < e.count; ++k)
@@ -318,7 +319,7 @@ class triangle_bvh {
       }
       const triangle_bvh_node4& n = nodes_[e.child];
       float t[4];
-      unsigned mask = hit_boxes(n, r, t_min, t_max, t);
+      unsigned mask = hit_boxes(n, r, t_min, t_max * cull_margin, t);
       if constexpr (count) stats->nodes += 4;
       const int first = top;
       for (; mask; mask &= mask - 1) {  // insert each hit child, keeping [first, top) by t
