@@ -63,6 +63,7 @@ fi
 "$bin/assignment-01-cylinder-render" --out "${bin%/build/bin}/book/assignments/01-cylinder/target.png" >/dev/null
 "$bin/assignment-02-ggx-render" --out "${bin%/build/bin}/book/assignments/02-ggx/target.png" >/dev/null
 "$bin/assignment-03-material-render" --out "${bin%/build/bin}/book/assignments/03-material/target.png" >/dev/null
+"$bin/assignment-04-shape-render" --out "${bin%/build/bin}/book/assignments/04-shape/target.png" >/dev/null
 # --- 2.1, 2.2, 4.1
 "$bin/shaders" --out 2.1-shaders.png >/dev/null && cp 2.1-shaders.png "$fig/"
 "$bin/shaders" --shader normal --out 2.1-normal.png >/dev/null && cp 2.1-normal.png "$fig/"
