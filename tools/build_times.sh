@@ -6,7 +6,7 @@
 #
 #   bash tools/build_times.sh [--rtiow DIR] [--build DIR] [--jobs N] [--repeat N]
 #                             [--test tests/test_X.cpp] [--header include/zraka/X.hpp]
-#                             [--chapters "1.2-sphere 2.2-whitted"] [--skip-full]
+#                             [--chapters "1.2-sphere 2.2-whitted"] [--skip-full] [-- CMAKE_ARGS...]
 #
 # --rtiow DIR   a folder holding RTIOW book 1's sources (src/InOneWeekend: main.cc and its
 #               headers); kept outside this repository. Without it the yardstick is skipped.
@@ -14,11 +14,12 @@
 #               Release configuration without ccache, so every figure is a real compile.
 # --skip-full   reuse an already built --build DIR (only the incremental rows).
 # --repeat N    measure each incremental row N times and print the median (default 1).
+# -- ARGS       the rest goes to cmake's configure step (e.g. -DZRAKA_WERROR=ON).
 # Not a test: the figures depend on the machine and its load, which is printed with them.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-rtiow="" build="" jobs=$(nproc) repeat=1 skip_full=0 chapters=""
-test_file=tests/test_sphere.cpp header=include/zraka/sphere.hpp
+cmake_args=() rtiow="" build="" jobs=$(nproc) repeat=1 skip_full=0 chapters=""
+test_file=tests/test_sphere.cpp header=include/zraka/whitted.hpp
 
 die() { echo "error: $*" >&2; exit 1; }
 while (($#)); do
@@ -31,7 +32,8 @@ while (($#)); do
     --header) header=${2:?}; shift 2 ;;
     --chapters) chapters=${2:?}; shift 2 ;;
     --skip-full) skip_full=1; shift ;;
-    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --) shift; cmake_args=("$@"); break ;;
+    -h|--help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
 done
@@ -63,15 +65,26 @@ fi
 export CCACHE_DISABLE=1  # a cached object would measure ccache, not the compiler
 
 now() { date +%s.%N; }
-# seconds <command...>: runs the command quietly, prints its wall-clock seconds.
+# seconds <command...>: runs the command quietly, prints "<wall> <cpu>": wall-clock seconds, and
+# the user+system CPU seconds of it and its children (less sensitive to other users' load).
 seconds() {
-  local t0 t1
+  local t0 t1 cpu
   t0=$(now)
-  "$@" >"$tmp/last.log" 2>&1 || { cat "$tmp/last.log" >&2; die "failed: $*"; }
+  cpu=$( ( "$@" >"$tmp/last.log" 2>&1 || exit 1; times ) | tail -1) ||
+    { cat "$tmp/last.log" >&2; die "failed: $*"; }
   t1=$(now)
-  awk -v a="$t0" -v b="$t1" 'BEGIN {printf "%.2f\n", b - a}'
+  awk -v a="$t0" -v b="$t1" -v c="$cpu" 'BEGIN {
+    split(c, f, " "); n = 0
+    for (i = 1; i <= 2; i++) { split(f[i], m, "m"); sub("s", "", m[2]); n += m[1] * 60 + m[2] }
+    printf "%.2f %.2f\n", b - a, n }'
 }
-median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+# median of lines "<wall> <cpu>", each column on its own
+median1() { sort -g | awk '{v[NR] = $1} END {m = int((NR + 1) / 2); print (NR % 2) ? v[m] : (v[m] + v[m + 1]) / 2}'; }
+median() {
+  local lines
+  lines=$(cat)
+  echo "$(cut -d' ' -f1 <<<"$lines" | median1) $(cut -d' ' -f2 <<<"$lines" | median1)"
+}
 build_target() { cmake --build "$build" --target "$1" -j "$jobs"; }
 # touch_and_build <file> <target>: the median rebuild after an edit that changes only the time.
 touch_and_build() {
@@ -85,10 +98,12 @@ touch_and_build() {
 
 rtiow_once() { g++ -O3 -o "$tmp/rtiow" "$rtiow/main.cc"; }
 rtiow_times=()
-measure_rtiow() { [[ -z $rtiow ]] || rtiow_times+=("$(seconds rtiow_once)"); }
+measure_rtiow() {
+  [[ -z $rtiow ]] || { rtiow_times+=("$(seconds rtiow_once)"); echo "  RTIOW: ${rtiow_times[-1]} (wall cpu)" >&2; }
+}
 
 rows=()  # "label<TAB>seconds"; seconds "-" when not measured
-row() { rows+=("$1"$'\t'"$2"); }
+row() { rows+=("$1"$'\t'"$2"); echo "  $1: $2 (wall cpu)" >&2; }
 
 echo "load before: $(uptime)"
 measure_rtiow
@@ -97,9 +112,14 @@ if ((skip_full == 0)); then
   touch "$marker"
   generator=()
   if command -v ninja >/dev/null; then generator=(-G Ninja); fi
-  cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+  cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "${cmake_args[@]}" \
         >"$tmp/configure.log" 2>&1 || { cat "$tmp/configure.log" >&2; die "configure failed"; }
   row "full clean build (all, -j$jobs)" "$(seconds cmake --build "$build" -j "$jobs")"
+  # A rejected precompiled header is only a warning here (no ZRAKA_WERROR), and a slow build.
+  if grep -q "Winvalid-pch" "$tmp/last.log"; then
+    grep "Winvalid-pch" "$tmp/last.log" | head -5 >&2
+    echo "warning: some units did not use their precompiled header (above)" >&2
+  fi
 fi
 measure_rtiow
 
@@ -123,19 +143,24 @@ echo "load after:  $(uptime)"
 
 rtiow_s=""
 if ((${#rtiow_times[@]})); then rtiow_s=$(printf '%s\n' "${rtiow_times[@]}" | median); fi
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN {printf "%.2f", a / b}'; }
 echo
-printf '%-52s %8s %8s\n' "what" "seconds" "x RTIOW"
+printf '%-50s %7s %7s %8s %8s\n' "what" "wall s" "cpu s" "wall/RT" "cpu/RT"
 for r in "${rows[@]}"; do
   label=${r%%$'\t'*} t=${r##*$'\t'}
-  if [[ $t == - || -z $rtiow_s || $label == full* ]]; then
-    printf '%-52s %8s\n' "$label" "$t"
+  if [[ $t == - ]]; then printf '%-50s %7s\n' "$label" "-"; continue; fi
+  read -r w c <<<"$t"
+  if [[ -z $rtiow_s || $label == full* ]]; then
+    printf '%-50s %7.2f %7.2f\n' "$label" "$w" "$c"
   else
-    printf '%-52s %8.2f %8.2f\n' "$label" "$t" "$(awk -v a="$t" -v b="$rtiow_s" 'BEGIN {print a / b}')"
+    read -r rw rc <<<"$rtiow_s"
+    printf '%-50s %7.2f %7.2f %8s %8s\n' "$label" "$w" "$c" "$(ratio "$w" "$rw")" "$(ratio "$c" "$rc")"
   fi
 done
 if [[ -n $rtiow_s ]]; then
-  printf '%-52s %8.2f          (median of: %s)\n' "RTIOW book 1 main.cc (g++ -O3, compile+link)" \
-         "$rtiow_s" "$(printf '%s ' "${rtiow_times[@]}")"
+  read -r rw rc <<<"$rtiow_s"
+  printf '%-50s %7.2f %7.2f   (runs, wall cpu: %s)\n' "RTIOW book 1 main.cc (g++ -O3, compile+link)" "$rw" "$rc" \
+         "$(printf '%s, ' "${rtiow_times[@]}" | sed 's/, $//')"
 else
   echo "RTIOW book 1 main.cc: skipped (give --rtiow DIR, the folder of its main.cc)"
 fi
