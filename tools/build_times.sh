@@ -6,19 +6,21 @@
 #
 #   bash tools/build_times.sh [--rtiow DIR] [--build DIR] [--jobs N] [--repeat N]
 #                             [--test tests/test_X.cpp] [--header include/zraka/X.hpp]
-#                             [--chapters "1.2-sphere 2.2-whitted"] [--skip-full] [-- CMAKE_ARGS...]
+#                             [--chapters "1.2-sphere 2.2-whitted"] [--chapters-only]
+#                             [--skip-full] [-- CMAKE_ARGS...]
 #
 # --rtiow DIR   a folder holding RTIOW book 1's sources (src/InOneWeekend: main.cc and its
 #               headers); kept outside this repository. Without it the yardstick is skipped.
 # --build DIR   the build folder (default: a new temporary one, removed at the end). A fresh
 #               Release configuration without ccache, so every figure is a real compile.
 # --skip-full   reuse an already built --build DIR (only the incremental rows).
+# --chapters-only  no test-file and header rows.
 # --repeat N    measure each incremental row N times and print the median (default 1).
 # -- ARGS       the rest goes to cmake's configure step (e.g. -DZRAKA_WERROR=ON).
 # Not a test: the figures depend on the machine and its load, which is printed with them.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-cmake_args=() rtiow="" build="" jobs=$(nproc) repeat=1 skip_full=0 chapters=""
+cmake_args=() chapters_only=0 rtiow="" build="" jobs=$(nproc) repeat=1 skip_full=0 chapters=""
 test_file=tests/test_sphere.cpp header=include/zraka/whitted.hpp
 
 die() { echo "error: $*" >&2; exit 1; }
@@ -32,8 +34,9 @@ while (($#)); do
     --header) header=${2:?}; shift 2 ;;
     --chapters) chapters=${2:?}; shift 2 ;;
     --skip-full) skip_full=1; shift ;;
+    --chapters-only) chapters_only=1; shift ;;
     --) shift; cmake_args=("$@"); break ;;
-    -h|--help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
 done
@@ -135,9 +138,11 @@ for ch in $chapters; do
     row "chapter $ch (not built here)" "-"
   fi
 done
-test_name=$(basename "$test_file" .cpp)
-row "$test_file (touch, build $test_name)" "$(touch_and_build "$test_file" "$test_name")"
-row "$header (touch, build all)" "$(touch_and_build "$header" all)"
+if ((chapters_only == 0)); then
+  test_name=$(basename "$test_file" .cpp)
+  row "$test_file (touch, build $test_name)" "$(touch_and_build "$test_file" "$test_name")"
+  row "$header (touch, build all)" "$(touch_and_build "$header" all)"
+fi
 measure_rtiow
 echo "load after:  $(uptime)"
 

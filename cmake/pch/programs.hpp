@@ -3,15 +3,15 @@
 #pragma once
 #include "common.hpp"
 
-// CLI11 2.1.2 (Debian 12) is header-only and costs each program about 2.5 s of parsing, which the
-// precompiled header removes, and 4-6 s of code generation at -O3, which no precompiled header
-// can: its validator objects at namespace scope and the virtual functions of its formatter and
-// config reader are emitted in every translation unit that includes it. Parsing a command line
-// is not hot code, so CLI11's own functions are compiled at -O0 here (measured on 1.2-sphere,
-// user CPU seconds: 11.5 without a PCH, 10.3 with it at -O3, 6.8 with it at -O0). Every standard
-// header CLI11 includes is already included above, so no standard template is defined, and
-// optimised, inside this region. A program built without this PCH (an outside project) compiles
-// CLI11 at its own optimisation level; the behaviour is the same.
+// CLI11 2.1.2 (Debian 12) is header-only. Its parsing (~2.5 CPU-s per program) is what this
+// precompiled header removes; its code generation it cannot: its validator objects at namespace
+// scope and the virtual functions of its formatter and config reader are emitted in every unit
+// that includes it (3/4 of 1.2-sphere's object code is CLI11). Parsing a command line is not hot
+// code, so CLI11's own functions are compiled at -O0 here. Measured on 1.2-sphere, CPU seconds on
+// a loaded machine: 11.5 without a PCH, 10.3 with it and CLI11 at -O3, 6.8 with CLI11 at -O0.
+// Every standard header CLI11 includes is included above first, so no standard template is
+// defined inside this region (templates are optimised as where they are defined). A program
+// built without this PCH (an outside project) compiles CLI11 at its own level; same behaviour.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC push_options
 #pragma GCC optimize("O0")
