@@ -14,7 +14,9 @@
 # --build DIR   the build folder (default: a new temporary one, removed at the end). A fresh
 #               Release configuration without ccache, so every figure is a real compile.
 # --skip-full   reuse an already built --build DIR (only the incremental rows).
-# --chapters-only  no test-file and header rows.
+# --chapters-only  no test-file and header rows (the same as --test '' --header '').
+# On a shared machine the seconds swing with other users' load: RTIOW is compiled again after
+# every row, and each row's ratio is to the mean of the RTIOW runs just before and after it.
 # --repeat N    measure each incremental row N times and print the median (default 1).
 # -- ARGS       the rest goes to cmake's configure step (e.g. -DZRAKA_WERROR=ON).
 # Not a test: the figures depend on the machine and its load, which is printed with them.
@@ -30,8 +32,8 @@ while (($#)); do
     --build) build=${2:?}; shift 2 ;;
     --jobs) jobs=${2:?}; shift 2 ;;
     --repeat) repeat=${2:?}; shift 2 ;;
-    --test) test_file=${2:?}; shift 2 ;;
-    --header) header=${2:?}; shift 2 ;;
+    --test) test_file=${2?}; shift 2 ;;
+    --header) header=${2?}; shift 2 ;;
     --chapters) chapters=${2:?}; shift 2 ;;
     --skip-full) skip_full=1; shift ;;
     --chapters-only) chapters_only=1; shift ;;
@@ -42,8 +44,8 @@ while (($#)); do
 done
 [[ $jobs =~ ^[1-9][0-9]*$ ]] || die "--jobs must be a positive integer, got '$jobs'"
 [[ $repeat =~ ^[1-9][0-9]*$ ]] || die "--repeat must be a positive integer, got '$repeat'"
-[[ -f $root/$test_file ]] || die "--test: no file $root/$test_file"
-[[ -f $root/$header ]] || die "--header: no file $root/$header"
+[[ -z $test_file || -f $root/$test_file ]] || die "--test: no file $root/$test_file"
+[[ -z $header || -f $root/$header ]] || die "--header: no file $root/$header"
 if [[ -n $rtiow ]]; then
   [[ -f $rtiow/main.cc ]] || die "--rtiow: no main.cc in $rtiow"
   rtiow=$(cd "$rtiow" && pwd)
@@ -105,8 +107,12 @@ measure_rtiow() {
   [[ -z $rtiow ]] || { rtiow_times+=("$(seconds rtiow_once)"); echo "  RTIOW: ${rtiow_times[-1]} (wall cpu)" >&2; }
 }
 
-rows=()  # "label<TAB>seconds"; seconds "-" when not measured
-row() { rows+=("$1"$'\t'"$2"); echo "  $1: $2 (wall cpu)" >&2; }
+rows=()  # "label<TAB>wall cpu<TAB>index of the RTIOW run before it"; "-" when not measured
+row() {
+  rows+=("$1"$'\t'"$2"$'\t'"$((${#rtiow_times[@]} - 1))")
+  echo "  $1: $2 (wall cpu)" >&2
+  [[ $2 == - ]] || measure_rtiow
+}
 
 echo "load before: $(uptime)"
 measure_rtiow
@@ -124,7 +130,6 @@ if ((skip_full == 0)); then
     echo "warning: some units did not use their precompiled header (above)" >&2
   fi
 fi
-measure_rtiow
 
 if [[ -z $chapters ]]; then
   chapters=$(cd "$root/chapters" && for d in */main.cpp; do echo "${d%/main.cpp}"; done | sort -V)
@@ -138,34 +143,36 @@ for ch in $chapters; do
     row "chapter $ch (not built here)" "-"
   fi
 done
-if ((chapters_only == 0)); then
+if ((chapters_only == 0)) && [[ -n $test_file ]]; then
   test_name=$(basename "$test_file" .cpp)
   row "$test_file (touch, build $test_name)" "$(touch_and_build "$test_file" "$test_name")"
+fi
+if ((chapters_only == 0)) && [[ -n $header ]]; then
   row "$header (touch, build all)" "$(touch_and_build "$header" all)"
 fi
-measure_rtiow
 echo "load after:  $(uptime)"
 
 rtiow_s=""
 if ((${#rtiow_times[@]})); then rtiow_s=$(printf '%s\n' "${rtiow_times[@]}" | median); fi
-ratio() { awk -v a="$1" -v b="$2" 'BEGIN {printf "%.2f", a / b}'; }
+ratio() { awk -v a="$1" -v b="$2" -v c="$3" 'BEGIN {printf "%.2f", a / ((b + c) / 2)}'; }
 echo
 printf '%-50s %7s %7s %8s %8s\n' "what" "wall s" "cpu s" "wall/RT" "cpu/RT"
 for r in "${rows[@]}"; do
-  label=${r%%$'\t'*} t=${r##*$'\t'}
+  IFS=$'\t' read -r label t i <<<"$r"
   if [[ $t == - ]]; then printf '%-50s %7s\n' "$label" "-"; continue; fi
   read -r w c <<<"$t"
-  if [[ -z $rtiow_s || $label == full* ]]; then
+  if [[ -z $rtiow || $label == full* ]]; then
     printf '%-50s %7.2f %7.2f\n' "$label" "$w" "$c"
   else
-    read -r rw rc <<<"$rtiow_s"
-    printf '%-50s %7.2f %7.2f %8s %8s\n' "$label" "$w" "$c" "$(ratio "$w" "$rw")" "$(ratio "$c" "$rc")"
+    read -r bw bc <<<"${rtiow_times[i]}"
+    read -r aw ac <<<"${rtiow_times[i + 1]}"
+    printf '%-50s %7.2f %7.2f %8s %8s\n' "$label" "$w" "$c" "$(ratio "$w" "$bw" "$aw")" "$(ratio "$c" "$bc" "$ac")"
   fi
 done
 if [[ -n $rtiow_s ]]; then
   read -r rw rc <<<"$rtiow_s"
-  printf '%-50s %7.2f %7.2f   (runs, wall cpu: %s)\n' "RTIOW book 1 main.cc (g++ -O3, compile+link)" "$rw" "$rc" \
-         "$(printf '%s, ' "${rtiow_times[@]}" | sed 's/, $//')"
+  printf '%-50s %7.2f %7.2f   (median of %s runs)\n' "RTIOW book 1 main.cc (g++ -O3, compile+link)" "$rw" "$rc" \
+         "${#rtiow_times[@]}"
 else
   echo "RTIOW book 1 main.cc: skipped (give --rtiow DIR, the folder of its main.cc)"
 fi
