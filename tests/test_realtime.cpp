@@ -1,4 +1,4 @@
-// links: OpenCL yaml-cpp tinyobjloader
+// links: OpenCL yaml-cpp
 // The real-time path tracer (realtime.hpp, kernels/pathtrace.cl) against the REFERENCE: a long
 // mis render of the CPU path tracer (path.hpp through render.hpp), on a scene set covering
 // every emitter kind (triangle, mesh, one- and two-sided quads, spheres, point lights), every
