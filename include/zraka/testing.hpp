@@ -38,8 +38,11 @@
 #include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -229,10 +232,59 @@ inline result images_match(const image& got, const image& reference, const image
   return r;
 }
 
+namespace detail {
+// Checks a PNG's chunk structure before stb_image sees it, so that memory stays in proportion to
+// the file: stb_image trusts a chunk's declared length (an 80-byte file asked it for 1.7 GB, found
+// by fuzz/fuzz_png.cpp) and allocates the image its header declares before inflating. Every
+// chunk must lie inside the file, and the declared image must fit what the compressed data can
+// hold (deflate expands at most about 1032:1).
+inline void check_png_structure(const std::string& bytes, const std::string& name) {
+  static const char signature[] = "\x89PNG\r\n\x1a\n";
+  if (bytes.size() < 8 || bytes.compare(0, 8, signature, 8) != 0) throw error("cannot read PNG " + name + ": not a PNG file");
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (int i = 0; i < 4; ++i) v = v << 8 | static_cast<unsigned char>(bytes[at + std::size_t(i)]);
+    return v;
+  };
+  std::size_t at = 8;
+  double idat = 0, raw = -1;
+  while (at + 12 <= bytes.size()) {
+    const std::uint32_t len = u32(at);
+    const std::string type = bytes.substr(at + 4, 4);
+    if (len > bytes.size() - at - 12)
+      throw error("cannot read PNG " + name + ": chunk " + type + " runs past the end of the file");
+    if (type == "IHDR" && len >= 13) {
+      const double w = u32(at + 8), h = u32(at + 12);
+      const int depth = static_cast<unsigned char>(bytes[at + 16]), colour = static_cast<unsigned char>(bytes[at + 17]);
+      const int channels = colour == 2 ? 3 : colour == 4 ? 2 : colour == 6 ? 4 : 1;
+      raw = h * (1 + std::ceil(w * channels * depth / 8.0));
+      try {
+        image::check_size(static_cast<long long>(w), static_cast<long long>(h));
+      } catch (const error& e) {
+        throw error("cannot read PNG " + name + ": " + e.what());
+      }
+    }
+    if (type == "IDAT") idat += len;
+    at += 12 + std::size_t(len);
+    if (type == "IEND") break;
+  }
+  if (raw < 0) throw error("cannot read PNG " + name + ": no IHDR chunk");
+  if (raw > 1032 * idat + 1024)
+    throw error("cannot read PNG " + name + ": the image data is too short for the declared size");
+}
+}  // namespace detail
+
 // A PNG as display values in [0,1] (8-bit sRGB / 255).
 inline image read_png_display(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw error("cannot read PNG " + path.string() + ": cannot open the file");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() > std::size_t(std::numeric_limits<int>::max()))
+    throw error("cannot read PNG " + path.string() + ": larger than 2 GB");
+  detail::check_png_structure(bytes, path.string());
   int w = 0, h = 0, channels = 0;
-  unsigned char* data = stbi_load(path.string().c_str(), &w, &h, &channels, 3);
+  unsigned char* data = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
+                                              static_cast<int>(bytes.size()), &w, &h, &channels, 3);
   if (!data) throw error("cannot read PNG " + path.string() + ": " + stbi_failure_reason());
   image img;
   try {
