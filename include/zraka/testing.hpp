@@ -264,6 +264,9 @@ inline void check_png_structure(const std::string& bytes, const std::string& nam
         throw error("cannot read PNG " + name + ": " + e.what());
       }
     }
+    // An empty IDAT is legal but useless, and stb_image 2.27 then calls memcpy(NULL, ..., 0),
+    // undefined behaviour (UBSan stops there): refuse it.
+    if (type == "IDAT" && len == 0) throw error("cannot read PNG " + name + ": an empty IDAT chunk");
     if (type == "IDAT") idat += len;
     at += 12 + std::size_t(len);
     if (type == "IEND") break;
