@@ -47,7 +47,7 @@ run_one() {  # target
   while IFS= read -r s; do
     [[ -z "$s" ]] && continue
     if [[ -d "$s" ]]; then find "$s" -maxdepth 1 -type f ! -name README.md -exec cp -n -t "$corpus" {} +
-    else cp -n "$s" "$corpus"/; fi
+    elif [[ -f "$s" ]]; then cp -n "$s" "$corpus"/; fi  # a folder that does not exist yet: no seeds
   done < "build-fuzz/fuzz/fuzz_$t.seeds"
   local mode=()
   [[ $keep_going -eq 1 ]] && mode=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
@@ -58,7 +58,9 @@ run_one() {  # target
   local execs rate
   execs=$(grep -o 'stat::number_of_executed_units:[[:space:]]*[0-9]*' "build-fuzz/logs/$t.log" | awk '{s+=$2} END {print s+0}')
   rate=$(grep -o 'stat::average_exec_per_sec:[[:space:]]*[0-9]*' "build-fuzz/logs/$t.log" | tail -1 | awk '{print $2}')
+  # Fork mode (--keep-going) prints no final statistics: its last status line has the count.
   [[ -z "$execs" || "$execs" == 0 ]] && execs=$(grep -o '^#[0-9]*' "build-fuzz/logs/$t.log" | tail -1 | tr -d '#')
+  [[ -z "$rate" && -n "$execs" ]] && rate=$((execs / seconds))
   local found
   found=$(find "$art" -type f | wc -l)
   printf 'fuzz %-9s %4ss: %s executions (%s/s), corpus %s inputs, %s crash(es)\n' "$t" "$seconds" \

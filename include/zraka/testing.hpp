@@ -248,7 +248,9 @@ inline void check_png_structure(const std::string& bytes, const std::string& nam
   };
   std::size_t at = 8;
   double idat = 0, raw = -1;
-  while (at + 12 <= bytes.size()) {
+  for (bool end = false; !end;) {
+    // stb_image reads a chunk header from a partial one too (zeros past the end): none may be cut.
+    if (bytes.size() - at < 12) throw error("cannot read PNG " + name + ": the file ends inside a chunk (truncated)");
     const std::uint32_t len = u32(at);
     const std::string type = bytes.substr(at + 4, 4);
     if (len > bytes.size() - at - 12)
@@ -269,7 +271,7 @@ inline void check_png_structure(const std::string& bytes, const std::string& nam
     if (type == "IDAT" && len == 0) throw error("cannot read PNG " + name + ": an empty IDAT chunk");
     if (type == "IDAT") idat += len;
     at += 12 + std::size_t(len);
-    if (type == "IEND") break;
+    end = type == "IEND";
   }
   if (raw < 0) throw error("cannot read PNG " + name + ": no IHDR chunk");
   if (raw > 1032 * idat + 1024)
@@ -288,7 +290,10 @@ inline image read_png_display(const std::filesystem::path& path) {
   int w = 0, h = 0, channels = 0;
   unsigned char* data = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
                                               static_cast<int>(bytes.size()), &w, &h, &channels, 3);
-  if (!data) throw error("cannot read PNG " + path.string() + ": " + stbi_failure_reason());
+  if (!data) {  // stb_image does not give a reason for every failure (fuzz_png found a NULL one)
+    const char* why = stbi_failure_reason();
+    throw error("cannot read PNG " + path.string() + ": " + (why ? why : "corrupt PNG"));
+  }
   image img;
   try {
     img = image(w, h);
