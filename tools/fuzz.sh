@@ -50,7 +50,8 @@ run_one() {  # target
     elif [[ -f "$s" ]]; then cp -n "$s" "$corpus"/; fi  # a folder that does not exist yet: no seeds
   done < "build-fuzz/fuzz/fuzz_$t.seeds"
   local mode=()
-  [[ $keep_going -eq 1 ]] && mode=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
+  [[ -f "$root/fuzz/$t.dict" ]] && mode+=(-dict="$root/fuzz/$t.dict")  # keywords the mutations try
+  [[ $keep_going -eq 1 ]] && mode+=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
   # The targets' own output (pathtrace's messages) is closed: only libFuzzer's report remains.
   TMPDIR=$work_tmp "$bin" "${mode[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
     -malloc_limit_mb=1024 -close_fd_mask=3 -print_final_stats=1 -artifact_prefix="$art/" "$corpus" \
