@@ -21,7 +21,8 @@
 #include <zraka/error.hpp>
 #include <zraka/image_error.hpp>
 #include <zraka/image_io.hpp>
-#include <zraka/integrators.hpp>
+#include <zraka/lights.hpp>
+#include <zraka/path.hpp>
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/progressive.hpp>
 #include <zraka/scene_file.hpp>

@@ -238,7 +238,7 @@ TEST_CASE("testing: a reference PNG is a regular file, and its claimed size is c
   png += std::string("\0\0\0\x0d", 4) + "IHDR" + std::string("\0\0\x20\0\0\0\x20\0\x08\x02\0\0\0", 13) + "CRC!";
   std::ofstream(p, std::ios::binary) << png;
   CHECK_THROWS_WITH_AS(zt::read_png_display(p),
-                       (p.string() + ": the image size 8192x8192 in pixels is 67108864, more than the limit of 16777216 "
+                       ("cannot read PNG " + p.string() + ": the image size 8192x8192 in pixels is 67108864, more than the limit of 16777216 "
                                      "(raise with --limit pixels=N)").c_str(),
                        error);
   fs::remove(p);
