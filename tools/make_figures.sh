@@ -11,7 +11,7 @@ trap 'rm -rf "$work"' EXIT
 cd "$work"
 
 # --- 1.0-1.2
-"$bin/sphere" --width 320 --height 240 --out sphere >/dev/null && cp sphere.png "$fig/1.2-sphere.png"
+"$bin/sphere" --width 320 --height 240 --out sphere.png >/dev/null && cp sphere.png "$fig/1.2-sphere.png"
 # --- 1.3-1.4
 "$bin/bezier" --samples 200000 --out 1.3-bezier.png --obj patch.obj >/dev/null && cp 1.3-bezier.png "$fig/"
 "$bin/normals" --out 1.4-normals.png >/dev/null && cp 1.4-normals.png "$fig/"
