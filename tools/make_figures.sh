@@ -42,12 +42,12 @@ xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "${xvfb[@]}" "$bin/tessellation" --frames 3 --level 8 --screenshot 3.2-teapot.png >/dev/null && cp 3.2-teapot.png "$fig/"
 "${xvfb[@]}" "$bin/tessellation" --frames 3 --level 4 --wireframe --screenshot 3.2-teapot-wire.png >/dev/null && cp 3.2-teapot-wire.png "$fig/"
 # --- 1.7-1.9
-"$bin/reflection" --width 320 --height 160 --spp 128 --out 1.7-reflection >/dev/null && cp 1.7-reflection.png "$fig/"
-"$bin/refraction" --width 320 --height 200 --spp 128 --out 1.8-refraction >/dev/null && cp 1.8-refraction.png "$fig/"
-"$bin/bxdf" --out 1.9-bxdf >/dev/null && cp 1.9-bxdf.png "$fig/"
+"$bin/reflection" --width 320 --height 160 --spp 128 --out 1.7-reflection.png >/dev/null && cp 1.7-reflection.png "$fig/"
+"$bin/refraction" --width 320 --height 200 --spp 128 --out 1.8-refraction.png >/dev/null && cp 1.8-refraction.png "$fig/"
+"$bin/bxdf" --out 1.9-bxdf.png >/dev/null && cp 1.9-bxdf.png "$fig/"
 # --- 5.1, 5.3
-"$bin/antialiasing" --out 5.1-antialiasing >/dev/null && cp 5.1-antialiasing.png "$fig/"
-"$bin/importance" --out 5.3-importance >/dev/null && cp 5.3-importance.png "$fig/"
+"$bin/antialiasing" --out 5.1-antialiasing.png >/dev/null && cp 5.1-antialiasing.png "$fig/"
+"$bin/importance" --out 5.3-importance.png >/dev/null && cp 5.3-importance.png "$fig/"
 if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
   aa_plot=("${bin%/build/bin}/build/plot-venv/bin/python" "${bin%/build/bin}/tools/plot_convergence.py")
   "${aa_plot[@]}" 5.1-antialiasing-{regular,uniform,stratified}.csv -o "$fig/5.1-rmse.png" \
@@ -67,13 +67,13 @@ fi
 "$bin/shaders" --out 2.1-shaders.png >/dev/null && cp 2.1-shaders.png "$fig/"
 "$bin/shaders" --shader normal --out 2.1-normal.png >/dev/null && cp 2.1-normal.png "$fig/"
 "$bin/whitted" --out 2.2-default.png >/dev/null && cp 2.2-default.png "$fig/"
-"$bin/whitted" scenes/box.yaml --spp 16 --out 2.2-box.png >/dev/null && cp 2.2-box.png "$fig/"
+"$bin/whitted" --scene box --spp 16 --out 2.2-box.png >/dev/null && cp 2.2-box.png "$fig/"
 for g in reflect both refract; do
-  "$bin/whitted" scenes/glass-$g.yaml --width 240 --height 180 --spp 16 --out 2.2-glass-$g.png >/dev/null
+  "$bin/whitted" --scene glass-$g --width 240 --height 180 --spp 16 --out 2.2-glass-$g.png >/dev/null
   cp 2.2-glass-$g.png "$fig/"
 done
-"$bin/whitted" scenes/teapot.yaml --spp 16 --out 2.2-teapot.png >/dev/null && cp 2.2-teapot.png "$fig/"
-"$bin/whitted" scenes/box.yaml --spp 16 --depth 1 --out 2.2-box-depth1.png >/dev/null && cp 2.2-box-depth1.png "$fig/"
+"$bin/whitted" --scene teapot --spp 16 --out 2.2-teapot.png >/dev/null && cp 2.2-teapot.png "$fig/"
+"$bin/whitted" --scene box --spp 16 --depth 1 --out 2.2-box-depth1.png >/dev/null && cp 2.2-box-depth1.png "$fig/"
 # --- realtime (4.3)
 "$bin/realtime" --headless --width 320 --height 240 --frames 64 --out 4.3-spheres.png >/dev/null && cp 4.3-spheres.png "$fig/"
 "$bin/realtime" --headless --scene cornell --width 240 --height 240 --frames 64 --out 4.3-cornell.png >/dev/null && cp 4.3-cornell.png "$fig/"
@@ -82,11 +82,11 @@ done
 xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "${xvfb[@]}" "$bin/realtime" --frames 16 --width 320 --height 240 --scene cornell-spheres --screenshot 4.3-viewer.png >/dev/null && cp 4.3-viewer.png "$fig/"
 # --- 2.3, 4.2 (path tracing; several minutes on two cores)
-"$bin/pathtrace" --scene cornell-glass --width 160 --height 160 --spp 256 --out 2.3-pathtrace >/dev/null && cp 2.3-pathtrace.png "$fig/"
-"$bin/pathtrace" --scene cornell-glass --width 64 --height 64 --centre --spp 2048 --seed 1001 --pfm ref.pfm --out ref >/dev/null
+"$bin/pathtrace" --scene cornell-glass --width 160 --height 160 --spp 256 --out 2.3-pathtrace.png >/dev/null && cp 2.3-pathtrace.png "$fig/"
+"$bin/pathtrace" --scene cornell-glass --width 64 --height 64 --centre --spp 2048 --seed 1001 --pfm ref.pfm --out ref.png >/dev/null
 for m in naive nee mis; do
   "$bin/pathtrace" --scene cornell-glass --width 64 --height 64 --centre --spp 1024 --integrator $m \
-    --reference ref.pfm --report 2.3-$m.csv --out 2.3-$m >/dev/null
+    --reference ref.pfm --report 2.3-$m.csv --out 2.3-$m.png >/dev/null
 done
 "$bin/results" --tile 80 --spp-sweep 1,8,64,512 --depth-spp 256 --conv-spp 512 --ref-spp 2048 >/dev/null
 cp 4.2-samples.png 4.2-depth.png "$fig/"

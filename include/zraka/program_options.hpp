@@ -9,8 +9,8 @@
 //   if (const auto done = opt.parse(argc, argv)) return *done;   // --help, or error: ... exit 1
 //
 // The convention (book/README.md): --out is a full file name whose extension picks the format
-// (.png, .ppm, .pfm); a relative name run from inside the checkout lands in build/out/, never
-// loose in the repository; --scene is a name from named_scenes.hpp or a .yaml path; --help
+// (.png, .ppm, .pfm); a bare file name run from inside the checkout lands in build/out/, never
+// loose in the repository (a name with a folder is taken as given); --scene is a name from named_scenes.hpp or a .yaml path; --help
 // shows every default; a bad value is "error: ..." and exit code 1.
 #include <zraka/atomic_file.hpp>
 #include <zraka/cli.hpp>
@@ -52,15 +52,26 @@ inline std::filesystem::path output_folder() {
   return root / "build" / "out";
 }
 
-// The file a relative output name stands for (see output_folder); the folder is made if needed.
+// The file an output name stands for: a bare file name ("x.png") goes to output_folder(), which
+// is made if needed; a name with a folder ("renders/x.png", "/tmp/x.png") is taken as given.
 inline std::filesystem::path output_file(const std::filesystem::path& name) {
-  if (name.is_absolute()) return name;
+  if (name.has_parent_path()) return name;
   const std::filesystem::path dir = output_folder();
   if (dir.empty()) return name;
   std::filesystem::create_directories(dir);
   std::error_code ec;  // say it short: build/out/x.png when run from the checkout's top
   const auto rel = (dir / name).lexically_relative(std::filesystem::current_path(ec));
   return ec || rel.empty() ? dir / name : rel;
+}
+
+// An input that an earlier run wrote (e.g. --reference ref.pfm): as given when it exists there,
+// else where output_file put it; a missing file is then reported under the name as given.
+inline std::filesystem::path input_file(const std::filesystem::path& name) {
+  std::error_code ec;
+  if (name.has_parent_path() || std::filesystem::exists(name, ec)) return name;
+  const std::filesystem::path dir = output_folder();
+  if (!dir.empty() && std::filesystem::exists(dir / name, ec)) return output_file(name);
+  return name;
 }
 
 struct program_options {
@@ -158,7 +169,7 @@ struct program_options {
       std::string types;
       for (const std::string& t : out_types) types += (types.empty() ? "" : ", ") + t;
       app.add_option("--out", out, "output file; its extension (" + types +
-                                       ") picks the format; a relative name from inside the checkout goes to build/out/");
+                                       ") picks the format; a bare name run inside the checkout goes to build/out/");
     }
   }
 };
