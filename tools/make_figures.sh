@@ -34,8 +34,8 @@ else
   echo "make_figures: no matplotlib venv, skipping the 1.6 plots" >&2
 fi
 # --- 3.1-3.3
-"$bin/rasterization" --width 320 --height 240 --out 3.1 >/dev/null && cp 3.1-raster.png "$fig/"
-"$bin/rasterization" --width 64 --height 48 --triangles 0 --out 3.1-square >/dev/null && cp 3.1-square-diff.png "$fig/"
+"$bin/rasterization" --width 320 --height 240 --out 3.1.png >/dev/null && cp 3.1-raster.png "$fig/"
+"$bin/rasterization" --width 64 --height 48 --triangles 0 --out 3.1-square.png >/dev/null && cp 3.1-square-diff.png "$fig/"
 xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "${xvfb[@]}" "$bin/opengl" --frames 3 --screenshot 3.2-triangle.png >/dev/null && cp 3.2-triangle.png "$fig/"
 "${xvfb[@]}" "$bin/opengl" --frames 3 --thesis-stride --screenshot 3.2-thesis-stride.png >/dev/null && cp 3.2-thesis-stride.png "$fig/"
@@ -58,7 +58,7 @@ else
   echo "make_figures: no matplotlib venv, skipping the 5.1 and 5.3 plots" >&2
 fi
 # --- 5.2
-"$bin/bvh" --divs 32 --out 5.2-bvh >/dev/null && cp 5.2-bvh-heat.png "$fig/"
+"$bin/bvh" --divs 32 --out 5.2-bvh-heat.png >/dev/null && cp 5.2-bvh-heat.png "$fig/"
 # --- assignments (book/assignments): the target images, made by the reference solutions
 "$bin/assignment-01-cylinder-render" --out "${bin%/build/bin}/book/assignments/01-cylinder/target.png" >/dev/null
 "$bin/assignment-02-ggx-render" --out "${bin%/build/bin}/book/assignments/02-ggx/target.png" >/dev/null

@@ -58,8 +58,9 @@ inline std::filesystem::path output_file(const std::filesystem::path& name) {
   if (name.has_parent_path()) return name;
   const std::filesystem::path dir = output_folder();
   if (dir.empty()) return name;
-  std::filesystem::create_directories(dir);
-  std::error_code ec;  // say it short: build/out/x.png when run from the checkout's top
+  std::error_code ec;  // a folder that cannot be made shows up as a clear error when writing
+  std::filesystem::create_directories(dir, ec);
+  // say it short: build/out/x.png when run from the checkout's top
   const auto rel = (dir / name).lexically_relative(std::filesystem::current_path(ec));
   return ec || rel.empty() ? dir / name : rel;
 }
@@ -72,6 +73,12 @@ inline std::filesystem::path input_file(const std::filesystem::path& name) {
   const std::filesystem::path dir = output_folder();
   if (!dir.empty() && std::filesystem::exists(dir / name, ec)) return output_file(name);
   return name;
+}
+
+// The folder for programs that write several files (--out-dir): output_folder(), or ".".
+inline std::string output_dir() {
+  const std::filesystem::path f = output_file("f");
+  return f.has_parent_path() ? f.parent_path().string() : ".";
 }
 
 struct program_options {
@@ -105,7 +112,7 @@ struct program_options {
         bool known = false;
         std::string list;
         for (const std::string& t : out_types) known |= ext == t, list += (list.empty() ? "" : ", ") + t;
-        if (!known) throw error("--out " + out + ": unknown file type '" + ext + "' (use " + list + ")");
+        if (!known) throw error("--out " + out + ": unknown image type '" + ext + "' (use " + list + ")");
         out = output_file(out).string();
       }
       if (!scene_settings) check();
