@@ -69,8 +69,7 @@ int main(int argc, char** argv) {
   if (const auto done = cli.parse(argc, argv)) return *done;
   const int width = cli.width, height = cli.height, spp = cli.spp, depth = cli.depth;
   const std::uint64_t seed = cli.seed;
-  render_options opt;
-  opt.threads = cli.threads;
+  const render_options opt = cli.render();
   const std::string& out = cli.out;
 
   return guarded([&] {

@@ -21,6 +21,7 @@ using namespace zraka;
 int main(int argc, char** argv) {
   program_options po{"Chapter 2.2: a Whitted ray tracer (shadows, mirrors, glass)",
                      take::scene | take::image | take::depth};
+  po.scene_names = named_scene_list();
   po.scene = "default", po.out = "whitted.png", po.scene_settings = true;
   std::string pfm;
   bool blinn = false;

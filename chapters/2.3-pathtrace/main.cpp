@@ -102,6 +102,7 @@ std::string scene_json(const scene& sc, int width, int height, int depth) {
 int main(int argc, char** argv) {
   program_options opt{"Chapter 2.3: path tracing with the naive, nee or mis integrator, error against run time",
                       take::scene | take::image | take::depth};
+  opt.scene_names = named_scene_list();
   opt.scene = "cornell-glass", opt.out = "pathtrace.png", opt.scene_settings = true;
   opt.min_depth = 0, opt.max_depth = 1000;
   std::string method = "mis", selection = "power", pfm, reference, report, json;

@@ -136,8 +136,7 @@ int main(int argc, char** argv) {
   const int width = cli.width, height = cli.height;
   const std::uint64_t seed = cli.seed;
   // --out x.png names the three images x-raster.png, x-raycast.png and x-diff.png.
-  const std::filesystem::path out_path(cli.out);
-  const std::string out = (out_path.parent_path() / out_path.stem()).string(), ext = out_path.extension().string();
+  const std::string raster_file = cli.sibling("-raster"), cast_file = cli.sibling("-raycast"), diff_file = cli.sibling("-diff");
 
   return zraka::guarded([&] {
     using namespace zraka;
@@ -205,9 +204,9 @@ int main(int argc, char** argv) {
         differ_shared += owners > 1;
       }
 
-    write_image(raster, out + "-raster" + ext);
-    write_image(cast, out + "-raycast" + ext);
-    write_image(diff, out + "-diff" + ext);
+    write_image(raster, raster_file);
+    write_image(cast, cast_file);
+    write_image(diff, diff_file);
     std::printf("triangles: %zu (a split square and %d random), image %dx%d\n", tris.size(), count,
                 width, height);
     std::printf("split square: %ld pixels, %ld drawn twice (expected %ld = %d x %d, 0 twice)\n",
@@ -221,8 +220,7 @@ int main(int argc, char** argv) {
                 "the top-left rule leaves these out)\n", differ_on_edge - differ_shared);
     std::printf("rasterizer (objects outer): %.4f s; ray caster (pixels outer): %.4f s\n",
                 raster_seconds, cast_seconds);
-    std::printf("wrote %s-raster%s, %s-raycast%s, %s-diff%s\n", out.c_str(), ext.c_str(), out.c_str(),
-                ext.c_str(), out.c_str(), ext.c_str());
+    std::printf("wrote %s, %s, %s\n", raster_file.c_str(), cast_file.c_str(), diff_file.c_str());
     if (differ != differ_on_edge)
       throw error(std::to_string(differ - differ_on_edge) +
                   " pixel(s) differ away from any edge: a bug in one of the two loops");

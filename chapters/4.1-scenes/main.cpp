@@ -18,6 +18,7 @@ using namespace zraka;
 
 int main(int argc, char** argv) {
   program_options po{"Chapter 4.1: load a scene file and print it with its defaults filled in", take::scene};
+  po.scene_names = named_scene_list();
   po.scene = "default";
   bool quiet = false;
   po.app.add_flag("--quiet", quiet, "print only what was built, not the scene");

@@ -74,11 +74,8 @@ int main(int argc, char** argv) {
   if (const auto done = cli.parse(argc, argv)) return *done;
   const int width = cli.width, height = cli.height, max_spp = cli.spp;
   const std::uint64_t seed = cli.seed;
-  render_options opt;
-  opt.threads = cli.threads;
+  const render_options opt = cli.render();
   const std::string& out = cli.out;
-  const std::filesystem::path out_path(out);
-  const std::string stem = (out_path.parent_path() / out_path.stem()).string(), ext = out_path.extension().string();
 
   return guarded([&] {
     if (max_spp < 1 || max_spp > (1 << 16) || (max_spp & (max_spp - 1)) || (max_spp & 0xAAAAAAAA))
@@ -145,11 +142,12 @@ int main(int argc, char** argv) {
       paste_crop(crops[2][c], cx, cy, crop, zoom, fig, c * (crop * zoom + gap), crop * zoom + gap);
     }
     write_image(fig, out);
-    write_image(reference, stem + "-reference" + ext);
-    for (int p = 0; p < 3; ++p) logs[p].write_csv(stem + "-" + name(patterns[p]) + ".csv");
-    std::printf("wrote %s (crop at %d,%d, %dx%d px, x%d; top regular, bottom stratified), %s-reference%s, "
-                "%s-{regular,uniform,stratified}.csv\n",
-                out.c_str(), cx, cy, crop, crop, zoom, stem.c_str(), ext.c_str(), stem.c_str());
+    write_image(reference, cli.sibling("-reference"));
+    for (int p = 0; p < 3; ++p) logs[p].write_csv(cli.sibling("-" + std::string(name(patterns[p])), ".csv"));
+    std::printf("wrote %s (crop at %d,%d, %dx%d px, x%d; top regular, bottom stratified), %s, "
+                "%s, ...\n",
+                out.c_str(), cx, cy, crop, crop, zoom, cli.sibling("-reference").c_str(),
+                cli.sibling("-" + std::string(name(patterns[0])), ".csv").c_str());
     const auto& last = [&](int p) { return logs[p].rows().back().values[0]; };
     std::printf("summary: %.2f s; RMSE at %d spp: regular %.5f, uniform %.5f, stratified %.5f; %llu NaN/inf samples\n",
                 total.seconds(), max_spp, last(0), last(1), last(2), static_cast<unsigned long long>(bad));

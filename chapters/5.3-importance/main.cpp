@@ -135,11 +135,8 @@ int main(int argc, char** argv) {
   if (const auto done = cli.parse(argc, argv)) return *done;
   const int width = cli.width, height = cli.height, max_spp = cli.spp;
   const std::uint64_t seed = cli.seed;
-  render_options opt;
-  opt.threads = cli.threads;
+  const render_options opt = cli.render();
   const std::string& out = cli.out;
-  const std::filesystem::path out_path(out);
-  const std::string stem = (out_path.parent_path() / out_path.stem()).string(), ext = out_path.extension().string();
 
   return guarded([&] {
     if (max_spp < 1 || max_spp > (1 << 16) || (max_spp & (max_spp - 1)) || (max_spp & 0xAAAAAAAA))
@@ -232,10 +229,11 @@ int main(int argc, char** argv) {
       for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) fig.at(i * (width + gap) + x, y) = figure_images[i].at(x, y);
     write_image(fig, out);
-    write_image(reference, stem + "-reference" + ext);
-    for (std::size_t i = 0; i < 4; ++i) logs[i].write_csv(stem + "-" + name(strategies[i]) + ".csv");
-    std::printf("wrote %s (uniform, cosine, light, mixture at %d spp), %s-reference%s, %s-<strategy>.csv\n",
-                out.c_str(), figure_spp, stem.c_str(), ext.c_str(), stem.c_str());
+    write_image(reference, cli.sibling("-reference"));
+    for (std::size_t i = 0; i < 4; ++i) logs[i].write_csv(cli.sibling("-" + std::string(name(strategies[i])), ".csv"));
+    std::printf("wrote %s (uniform, cosine, light, mixture at %d spp), %s, %s, ...\n",
+                out.c_str(), figure_spp, cli.sibling("-reference").c_str(),
+                cli.sibling("-" + std::string(name(strategies[0])), ".csv").c_str());
 
     std::printf("winner: %s sampling: in equal time its RMSE is %.1fx lower than %s (next best) and %.1fx lower "
                 "than uniform; it reaches RMSE %.3g %.1fx sooner than %s\n",

@@ -16,7 +16,6 @@
 #include <zraka/cli.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
-#include <zraka/named_scenes.hpp>
 #include <zraka/render.hpp>
 #include <zraka/resources.hpp>
 
@@ -91,6 +90,7 @@ struct program_options {
   std::string out;  // a full file name; its extension picks the format
   std::vector<std::string> out_types{".png", ".ppm", ".pfm"};
   std::string scene = "cornell";  // a name from named_scenes.hpp or a .yaml path
+  std::string scene_names;        // for --help: named_scene_list() (this header needs no scene types)
   // true: size, spp, depth and seed default to the scene's own settings (apply_to); --help says so.
   bool scene_settings = false;
 
@@ -121,6 +121,20 @@ struct program_options {
       return 1;
     }
     return std::nullopt;
+  }
+
+  // The render options that --threads asks for.
+  render_options render() const {
+    render_options ro;
+    ro.threads = threads;
+    return ro;
+  }
+
+  // A file next to --out for a program that writes several: sibling("-reference") of
+  // "aa.png" is "aa-reference.png", sibling("-regular", ".csv") is "aa-regular.csv".
+  std::string sibling(const std::string& suffix, const std::string& extension = "") const {
+    const std::filesystem::path o(out);
+    return ((o.parent_path() / o.stem()).string() + suffix) + (extension.empty() ? o.extension().string() : extension);
   }
 
   // Was this option on the command line (e.g. given("--spp"))?
@@ -159,7 +173,8 @@ struct program_options {
       if (scene_settings) o->default_str("the scene's");
     };
     if (has(taken_, take::scene))
-      app.add_option("--scene", scene, "a scene name (" + named_scene_list() + ") or a .yaml scene file")
+      app.add_option("--scene", scene, "a scene name (" + (scene_names.empty() ? "see named_scenes.hpp" : scene_names) +
+                                           ") or a .yaml scene file")
         ;
     if (has(taken_, take::size)) {
       dflt(app.add_option("--width", width, "image width in pixels"));
