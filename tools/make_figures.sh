@@ -76,7 +76,7 @@ done
 "$bin/whitted" --scene box --spp 16 --depth 1 --out 2.2-box-depth1.png >/dev/null && cp 2.2-box-depth1.png "$fig/"
 # --- realtime (4.3)
 "$bin/realtime" --headless --width 320 --height 240 --frames 64 --out 4.3-spheres.png >/dev/null && cp 4.3-spheres.png "$fig/"
-"$bin/realtime" --headless --scene cornell --width 240 --height 240 --frames 64 --out 4.3-cornell.png >/dev/null && cp 4.3-cornell.png "$fig/"
+"$bin/realtime" --headless --scene cornell-glass --width 240 --height 240 --frames 64 --out 4.3-cornell.png >/dev/null && cp 4.3-cornell.png "$fig/"
 "$bin/realtime" --headless --width 200 --height 200 --frames 1 --weak-seed --out 4.3-weak-seed.png >/dev/null && cp 4.3-weak-seed.png "$fig/"
 "$bin/realtime" --headless --width 200 --height 200 --frames 1 --out 4.3-hashed-seed.png >/dev/null && cp 4.3-hashed-seed.png "$fig/"
 xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
