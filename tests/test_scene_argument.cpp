@@ -15,13 +15,14 @@ TEST_CASE("scene_argument: every registry name loads, the YAML ones from scenes/
 }
 
 TEST_CASE("scene_argument: the C++ Cornell boxes and scenes/cornell*.yaml are the same scenes") {
+  // (Material lists differ: the YAML loader adds its default material. 2.3's smoke test compares
+  // the images bit for bit.)
   for (const char* name : {"cornell", "cornell-glass", "cornell-spheres"}) {
     CAPTURE(name);
     const scene a = load_scene_argument(name).sc;
     const scene b = load_scene_argument(std::string("scenes/") + name + ".yaml").sc;
     CHECK(a.quads.size() == b.quads.size());
     CHECK(a.spheres.size() == b.spheres.size());
-    CHECK(a.materials.size() == b.materials.size());
     CHECK(a.settings.width == b.settings.width);
     CHECK(a.settings.spp == b.settings.spp);
   }
