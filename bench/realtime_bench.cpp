@@ -9,6 +9,7 @@
 #include <zraka/gpu_scene.hpp>
 #include <zraka/realtime.hpp>
 #include <zraka/render.hpp>
+#include <zraka/scene_file.hpp>
 #include <zraka/stopwatch.hpp>
 
 #include <CLI/CLI.hpp>
@@ -47,7 +48,7 @@ rate kernel_rate(gpu_renderer& r, int launches) {
   return {paths / clock.seconds() * 1e-6, paths / (cpu_seconds() - c0) * 1e-6};
 }
 
-rate cpu_rate(const scene& sc, int width, int height, int spp, int depth, int threads) {
+rate cpu_rate(const scene& sc, int width, int height, int spp, const path_options& po, int threads) {
   const auto cam = [&] {
     camera c = sc.camera;
     c.aspect = double(width) / height;
@@ -57,10 +58,7 @@ rate cpu_rate(const scene& sc, int width, int height, int spp, int depth, int th
   render_options opt;
   opt.threads = threads;
   opt.progress = false;
-  path_options po;
-  po.method = integrator::nee;  // the kernel's default
-  po.max_depth = depth;
-  const light_set lights(sc);
+  const light_set lights(sc, po.lights);
   const double c0 = cpu_seconds();
   const render_stats st = render(img, spp, 1, [&](sample_context& c) {
     return reference_sample(sc, lights, cam, c.x, c.y, width, height, c.random, po, c.rays);
@@ -73,9 +71,11 @@ rate cpu_rate(const scene& sc, int width, int height, int spp, int depth, int th
 
 int main(int argc, char** argv) {
   std::string scene_name = "spheres";
+  std::string method = "mis";
   int width = 256, height = 256, launches = 16, cpu_spp = 4, depth = 8, rounds = 2;
   CLI::App app{"Benchmark: the real-time kernel (specialised and all-features) vs the CPU path tracer"};
-  app.add_option("--scene", scene_name, "spheres, cornell, cornell-boxes, cornell-spheres");
+  app.add_option("--scene", scene_name, "spheres, cornell, cornell-boxes, cornell-spheres, or a .yaml file");
+  app.add_option("--integrator", method, "naive, nee or mis, on both sides");
   app.add_option("--width", width, "image width");
   app.add_option("--height", height, "image height");
   app.add_option("--launches", launches, "timed kernel launches (1 spp each) per measurement");
@@ -89,14 +89,17 @@ int main(int argc, char** argv) {
     if (width < 1 || height < 1 || launches < 1 || cpu_spp < 1 || rounds < 1 || depth < 0)
       throw error("sizes, --launches, --cpu-spp and --rounds must be positive, --depth not negative");
     const stopwatch clock;
-    const scene sc = realtime_scene(scene_name);
-    const gpu_scene packed = pack_scene(sc, width, height, depth);
+    const scene sc = scene_name.ends_with(".yaml") ? load_scene_file(scene_name).sc : realtime_scene(scene_name);
+    path_options po;
+    po.method = parse_integrator(method);
+    po.max_depth = depth;
+    const gpu_scene packed = pack_scene(sc, width, height, po);
     cl::context ctx(cl::pick_device(0));
     gpu_renderer special(ctx, packed, width, height, 1, false);
     gpu_renderer all(ctx, packed, width, height, 1, true);
     std::printf("device: %s, %u compute units\n", ctx.device.device_name.c_str(), ctx.device.compute_units);
-    std::printf("scene %s, %dx%d, depth %d, NEE on; kernel: %d launches of 1 spp; CPU: %d spp\n",
-                scene_name.c_str(), width, height, depth, launches, cpu_spp);
+    std::printf("scene %s, %dx%d, depth %d, integrator %s; kernel: %d launches of 1 spp; CPU: %d spp\n",
+                scene_name.c_str(), width, height, depth, name(po.method), launches, cpu_spp);
     std::printf("specialised options:  %s\nall-features options: %s\n", special.options().c_str(),
                 all.options().c_str());
 
@@ -104,8 +107,8 @@ int main(int argc, char** argv) {
     for (int round = 0; round < rounds; ++round) {  // interleaved: load changes hit all alike
       k_special.keep_best(kernel_rate(special, launches));
       k_all.keep_best(kernel_rate(all, launches));
-      c1.keep_best(cpu_rate(sc, width, height, cpu_spp, depth, 1));
-      c2.keep_best(cpu_rate(sc, width, height, cpu_spp, depth, 2));
+      c1.keep_best(cpu_rate(sc, width, height, cpu_spp, po, 1));
+      c2.keep_best(cpu_rate(sc, width, height, cpu_spp, po, 2));
     }
     std::printf("%-30s %16s %18s\n", "", "M paths/s (wall)", "M paths/CPU-second");
     auto row = [](const char* what, const rate& r) {

@@ -1,26 +1,32 @@
-// The real-time path tracer (book 4.3): path.hpp's algorithm as an OpenCL C 1.2 kernel, one work
-// item per pixel. Build it after kernels/rng.cl (zraka::cl::build_program_files), with the -D
-// switches of zraka::build_options() (include/zraka/gpu_scene.hpp):
+// The real-time path tracer (book 4.3): path.hpp's loop and lights.hpp's light module as an
+// OpenCL C 1.2 kernel, one work item per pixel. Build it after kernels/rng.cl
+// (zraka::cl::build_program_files), with the -D switches of zraka::build_options()
+// (include/zraka/gpu_scene.hpp):
+//   METHOD_NAIVE | METHOD_NEE | METHOD_MIS       the algorithm (path.hpp's integrator)
+//   MAX_DEPTH=n RR_DEPTH=n                       bounces; Russian roulette from bounce n on
 //   HAS_SPHERES HAS_QUADS HAS_PLANES HAS_TRIANGLES   which shapes exist (triangles: with the BVH)
-//   HAS_METAL HAS_DIELECTRIC HAS_CHECKER HAS_EMITTERS which material features are used
-//   HAS_THIN_LENS   the camera has an aperture       NEE   next-event estimation (path.hpp's default)
-//   MAX_DEPTH=n     bounces                           WEAK_SEED   the thesis's per-pixel seed (C7)
+//   HAS_METAL HAS_DIELECTRIC HAS_PHONG HAS_CHECKER   which materials are used
+//   HAS_EMITTERS                                 some material glows (emission is looked up)
+//   HAS_SPHERE_LIGHTS HAS_QUAD_LIGHTS HAS_TRIANGLE_LIGHTS HAS_POINT_LIGHTS   which lights are sampled
+//   HAS_THIN_LENS   the camera has an aperture   WEAK_SEED   the thesis's per-pixel seed (C7)
 // Code for a feature the scene does not use is not compiled at all.
 //
-// What changed from the CPU code: no recursion (OpenCL C forbids it; the loop carries the
-// throughput beta and the sum L, errata C6), no pointers between objects (indices into flat
-// arrays), float instead of double (except where triangle.hpp's float test itself uses double:
-// two sign decisions of the watertight triangle test, so triangles need cl_khr_fp64), and a
-// fixed-size stack for the BVH walk. What did not: every
-// formula (the same intersection routines, error bounds and ray offsets as sphere.hpp, quad.hpp,
-// plane.hpp, triangle_bvh.hpp and spawn.hpp; the same materials as material.hpp), and the random
-// numbers: rng.cl keyed by (seed, pixel, sample) with path.hpp's draws in path.hpp's order, so a
-// kernel sample starts from the same numbers as the CPU's.
+// What changed from the CPU code: no recursion, no pointers between objects (indices into flat
+// arrays, the light table packed from lights.hpp's light_set_t), float instead of double
+// (except two sign decisions of the watertight triangle test, which triangle.hpp makes in
+// double: triangles need cl_khr_fp64), and a fixed-size stack for the BVH walk. What did not:
+// every formula (the same intersection routines, error bounds and ray offsets as sphere.hpp, quad.hpp, plane.hpp, triangle_bvh.hpp
+// and spawn.hpp; the same materials as material.hpp and bxdf.hpp; the same light sampling and
+// densities as lights.hpp), and the random numbers: rng.cl keyed by (seed, pixel, sample) with
+// path.hpp's draws in path.hpp's order, so a kernel sample starts from the same numbers as the
+// CPU's.
 
 #ifndef MAX_DEPTH
 #define MAX_DEPTH 8
 #endif
+#ifndef RR_DEPTH
 #define RR_DEPTH 3
+#endif
 #define PI_F 3.14159265358979323846f
 // gamma(n) = n u / (1 - n u), u = 2^-24 (spawn.hpp in float)
 #define GAMMA(n) (((float)(n) * 0x1p-24f) / (1.0f - (float)(n) * 0x1p-24f))
@@ -38,23 +44,35 @@
 
 // ---------------------------------------------------------------- the shared structs (gpu_scene.hpp)
 // [listing cl-structs]
-typedef struct { float4 center_radius; int material, p0, p1, p2; } sphere_t;
-typedef struct { float4 corner, u, v, normal_area; int material, p0, p1, p2; } quad_t;
+// light: the object's index in the light table, or -1 (not a sampled light)
+typedef struct { float4 center_radius; int material, light, p1, p2; } sphere_t;
+typedef struct { float4 corner, u, v, normal_area; int material, light, p1, p2; } quad_t;
 typedef struct { float4 point, normal; int material, p0, p1, p2; } plane_t;
-typedef struct { float4 a, b, c; uint id; int material, p0, p1; } triangle_t;
+typedef struct { float4 a, b, c; uint id; int material, light, p1; } triangle_t;
 typedef struct { float box[6][4]; uint child[4], count[4]; } node4_t;
 typedef struct {
-  float4 albedo_a, albedo_b, radiance;
+  float4 albedo_a, albedo_b, radiance;  // phong: kd, ks
   int kind, checker, two_sided, pad;
-  float fuzz, ior, cell, pad2;
+  float fuzz, ior, cell, shininess;
 } material_t;
-typedef struct { int kind, index; } light_t;
+typedef struct {
+  float4 position, intensity;       // point lights
+  int kind, object, material, first;  // object: sphere or quad; first: triangles in light_tris
+  uint count;                       // triangles: how many
+  float cdf, pdf, area;             // selection CDF up to this light, its probability, area
+} light_t;
+typedef struct { float4 a, b, c; } light_triangle_t;  // a.w, b.w: area CDF before and after it
 typedef struct { float4 origin, u, v, corner, horizontal, vertical; float lens_radius, p0, p1, p2; } camera_t;
 // [end]
 #define KIND_LAMBERTIAN 0
 #define KIND_METAL 1
 #define KIND_DIELECTRIC 2
 #define KIND_EMITTER 3
+#define KIND_PHONG 4
+#define LIGHT_SPHERE 0
+#define LIGHT_QUAD 1
+#define LIGHT_TRIANGLES 2
+#define LIGHT_POINT 3
 
 // The scene, as the kernel's arguments give it.
 typedef struct {
@@ -65,6 +83,7 @@ typedef struct {
   global const node4_t* nodes;
   global const material_t* materials;
   global const light_t* lights;
+  global const light_triangle_t* light_tris;
   int n_spheres, n_quads, n_planes, n_lights, n_nodes;
   float3 background;
 } scene_t;
@@ -74,6 +93,7 @@ typedef struct {
   float3 p, p_error, normal;  // normal: unit, outward
   bool front_face;
   int material;
+  int light;  // the light table's index of the object hit, or -1
 } hit_t;
 
 // ---------------------------------------------------------------- random numbers
@@ -158,6 +178,7 @@ bool hit_sphere(const sphere_t s, float3 o, float3 D, float t_max, hit_t* h) {
     h->p_error = GAMMA(6) * (fabs(on) + fabs(h->p));
     h->normal = on / r;
     h->material = s.material;
+    h->light = s.light;
   }
   return true;
 }
@@ -188,6 +209,7 @@ bool hit_quad(const quad_t q, float3 o, float3 D, float t_max, hit_t* h) {
     h->p_error = GAMMA(4) * (fabs(Q) + fabs(a * u) + fabs(b * v));
     h->normal = N;
     h->material = q.material;
+    h->light = q.light;
   }
   return true;
 }
@@ -209,6 +231,7 @@ bool hit_plane(const plane_t pl, float3 o, float3 D, float t_max, hit_t* h) {
     h->p_error = (float3)(GAMMA(16) * dot(fabs(x) + fabs(P0), fabs(N)));
     h->normal = N;
     h->material = pl.material;
+    h->light = -1;  // an infinite plane is never sampled: hit only (lights.hpp)
   }
   return true;
 }
@@ -381,6 +404,7 @@ bool hit_bvh(const scene_t* sc, float3 o, float3 D, float t_max, hit_t* h) {
     h->p_error = GAMMA(64) * (fabs(w * A) + fabs(bu * B) + fabs(bv * C));
     h->normal = normalize(cross(B - A, C - A));
     h->material = tri->material;
+    h->light = tri->light;
   }
   return found;
 }
@@ -430,7 +454,79 @@ bool occluded(const scene_t* sc, float3 o, float3 D, float t_max) {
 }
 // [end]
 
-// ---------------------------------------------------------------- materials (material.hpp)
+// ---------------------------------------------------------------- small helpers (vec.hpp, sampling.hpp)
+float3 normalize_or_zero(float3 v) {
+  if (!(isfinite(v.x) && isfinite(v.y) && isfinite(v.z))) return (float3)(0.0f);
+  const float m = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
+  if (!(m > 0.0f)) return (float3)(0.0f);
+  const float3 s = v / m;
+  return s / sqrt(dot(s, s));
+}
+bool is_black(float3 c) { return !any(c != (float3)(0.0f)); }
+float3 reflect(float3 d, float3 n) { return d - 2.0f * dot(d, n) * n; }
+float2 uniform2(stream_t* g) {
+  const float a = uniform(g);
+  return (float2)(a, uniform(g));
+}
+
+// onb.hpp's frame around a unit n (Duff et al.): local (x, y, z) to world and back.
+typedef struct { float3 t, b, n; } onb_t;
+onb_t onb(float3 n) {
+  const float sign = copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float c = n.x * n.y * a;
+  onb_t f;
+  f.t = (float3)(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  f.b = (float3)(c, sign + n.y * n.y * a, -n.y);
+  f.n = n;
+  return f;
+}
+float3 to_world(float3 n, float3 v) {
+  const onb_t f = onb(n);
+  return v.x * f.t + v.y * f.b + v.z * f.n;
+}
+float3 to_local(float3 n, float3 v) {
+  const onb_t f = onb(n);
+  return (float3)(dot(v, f.t), dot(v, f.b), dot(v, f.n));
+}
+
+float3 sample_cosine_hemisphere(float2 u) {
+  const float u0 = clamp_unit(u.x), phi = 2.0f * PI_F * clamp_unit(u.y), s = sqrt(u0);
+  return (float3)(s * cos(phi), s * sin(phi), sqrt(1.0f - u0));
+}
+float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? cos_theta / PI_F : 0.0f; }
+
+// The cone of directions towards a sphere, in h = 1 - cos (sampling.hpp's cone_t).
+float cone_one_minus_cos(float radius, float distance) {
+  if (!(distance > radius)) return 2.0f;  // inside the sphere: it fills every direction
+  const float s = radius / distance, sin2 = s * s;
+  return fmax(sin2 / (1.0f + sqrt(1.0f - sin2)), FLT_MIN);
+}
+float3 cone_axis(float3 d) {
+  const float3 a = normalize_or_zero(d);
+  return is_black(a) ? (float3)(0.0f, 0.0f, 1.0f) : a;
+}
+float3 sample_cone(float2 u, float h_max) {
+  const float h = clamp_unit(u.x) * h_max;
+  const float s = sqrt(h * (2.0f - h)), phi = 2.0f * PI_F * clamp_unit(u.y);
+  return (float3)(s * cos(phi), s * sin(phi), 1.0f - h);
+}
+bool in_cone(float3 w, float h_max) {
+  const float len2 = dot(w, w);
+  if (!(len2 > 0.0f)) return false;
+  const float c = w.z / sqrt(len2);
+  const float h = c > 0.0f ? ((w.x * w.x + w.y * w.y) / len2) / (1.0f + c) : 1.0f - c;
+  return h <= h_max;
+}
+float cone_pdf(float3 axis, float h_max, float3 w) {
+  return in_cone(to_local(axis, w), h_max) ? 1.0f / (2.0f * PI_F * h_max) : 0.0f;
+}
+float area_to_solid_angle_pdf(float pdf_area, float distance2, float cos_light) {
+  const float c = fabs(cos_light);
+  return c > 0.0f ? pdf_area * distance2 / c : 0.0f;
+}
+
+// ---------------------------------------------------------------- materials (material.hpp, bxdf.hpp)
 float3 facing(const hit_t* h) { return h->front_face ? h->normal : -h->normal; }
 
 float3 albedo(global const material_t* m, const hit_t* h) {
@@ -448,19 +544,68 @@ float3 albedo(global const material_t* m, const hit_t* h) {
   return m->albedo_a.xyz;
 }
 
+// One-sided emitters shine from their front face only; any material may glow.
 float3 emitted(global const material_t* m, const hit_t* h) {
   return h->front_face || m->two_sided ? m->radiance.xyz : (float3)(0.0f);
 }
-
-// onb.hpp's frame around a unit n (Duff et al.), local (x, y, z) to world.
-float3 to_world(float3 n, float3 v) {
-  const float sign = copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float c = n.x * n.y * a;
-  const float3 t = (float3)(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  const float3 b = (float3)(c, sign + n.y * n.y * a, -n.y);
-  return v.x * t + v.y * b + v.z * n;
+bool has_density(global const material_t* m) {
+  return m->kind == KIND_LAMBERTIAN || m->kind == KIND_PHONG;
 }
+bool same_hemisphere(float3 wi, float3 wo, float3 n) { return dot(wi, n) > 0.0f && dot(wo, n) > 0.0f; }
+
+#ifdef HAS_PHONG
+// bxdf.hpp's lambert_phong_brdf_t: kd/pi plus the normalised lobe ks (s+2)/(2 pi) cos^s(alpha),
+// sampled as the mixture of the lobe (probability sum(ks) / sum(kd + ks)) and the cosine.
+float glossy_probability(global const material_t* m) {
+  const float d = m->albedo_a.x + m->albedo_a.y + m->albedo_a.z;
+  const float g = m->albedo_b.x + m->albedo_b.y + m->albedo_b.z;
+  return d + g > 0.0f ? g / (d + g) : 0.0f;
+}
+float3 phong_mirror(float3 wo, float3 n) { return reflect(-wo, n); }
+float3 sample_phong_lobe(float2 u, float s) {
+  const float e = log(1.0f - clamp_unit(u.x)) / (s + 1.0f);  // log(cos alpha)
+  const float c = exp(e), h = -expm1(e);                      // cos(alpha), 1 - cos(alpha)
+  const float sin_a = sqrt(h * (1.0f + c)), phi = 2.0f * PI_F * clamp_unit(u.y);
+  return (float3)(sin_a * cos(phi), sin_a * sin(phi), c);
+}
+float phong_lobe_pdf(float cos_alpha, float s) {
+  return cos_alpha > 0.0f ? (s + 1.0f) / (2.0f * PI_F) * pow(cos_alpha, s) : 0.0f;
+}
+#endif
+
+// material.hpp's brdf_at(...).eval: f(wo, wi), zero for the materials without a density.
+float3 brdf(global const material_t* m, const hit_t* h, float3 wo, float3 wi) {
+  const float3 n = facing(h);
+  if (!same_hemisphere(wi, wo, n)) return (float3)(0.0f);
+#ifdef HAS_PHONG
+  if (m->kind == KIND_PHONG) {
+    const float s = m->shininess;
+    const float c = clamp(dot(wi, phong_mirror(wo, n)), 0.0f, 1.0f);
+    return m->albedo_a.xyz / PI_F + m->albedo_b.xyz * ((s + 2.0f) / (2.0f * PI_F) * pow(c, s));
+  }
+#endif
+  if (m->kind == KIND_LAMBERTIAN) return albedo(m, h) / PI_F;
+  return (float3)(0.0f);
+}
+// [listing cl-brdf-cos]
+float3 brdf_cos(global const material_t* m, const hit_t* h, float3 wo, float3 wi) {
+  return brdf(m, h, wo, wi) * fmax(0.0f, dot(facing(h), wi));
+}
+// The density scatter() samples wi with (the mixture's; Lambert: the lobe's weight is 0).
+float scatter_pdf(global const material_t* m, const hit_t* h, float3 wo, float3 wi) {
+  if (!has_density(m)) return 0.0f;
+  const float3 n = facing(h);
+  if (!same_hemisphere(wi, wo, n)) return 0.0f;
+  float w_lobe = 0.0f, lobe = 0.0f;
+#ifdef HAS_PHONG
+  if (m->kind == KIND_PHONG) {
+    w_lobe = glossy_probability(m);
+    lobe = phong_lobe_pdf(fmin(dot(wi, phong_mirror(wo, n)), 1.0f), m->shininess);
+  }
+#endif
+  return w_lobe * lobe + (1.0f - w_lobe) * cosine_hemisphere_pdf(dot(wi, n));
+}
+// [end]
 
 #ifdef HAS_DIELECTRIC
 float cos2_transmitted(float cos_i, float eta) {
@@ -490,24 +635,62 @@ bool refract_dir(float3 d, float3 n, float eta, float3* t) {
 }
 #endif
 
-// Scatter (material.hpp's scatter()): false when absorbed; *weight is f cos / pdf.
+typedef struct {
+  float3 direction;  // unit, away from the surface
+  float3 weight;     // f |cos| / pdf
+  float pdf;         // density of direction; 0 for specular
+  bool specular;
+} scatter_t;
+
+// material.hpp's scatter(): false when absorbed (or a light, which does not reflect).
 // [listing cl-scatter]
-bool scatter(global const material_t* m, float3 d, const hit_t* h, stream_t* g, float3* wi,
-             float3* weight, bool* specular) {
-  const float3 n = facing(h);
+bool scatter(global const material_t* m, float3 d, const hit_t* h, stream_t* g, scatter_t* s) {
+  const float3 n = facing(h);  // on the side the ray came from
+  if (m->kind == KIND_EMITTER) return false;
+  if (has_density(m)) {
+    // Three numbers, two for the direction and one for a lobe, whether used or not: the
+    // path's later numbers do not depend on the material it met (material.hpp).
+    const float2 u = uniform2(g);
+    const float u_lobe = uniform(g);
+    (void)u_lobe;
+    s->specular = false;
+    if (m->kind == KIND_LAMBERTIAN) {  // cosine-weighted: f cos / pdf = albedo exactly
+      if (!(dot(-d, n) > 0.0f)) return false;  // grazing
+      s->direction = to_world(n, sample_cosine_hemisphere(u));
+      s->pdf = cosine_hemisphere_pdf(dot(s->direction, n));
+      if (!(s->pdf > 0.0f)) return false;  // rounding put it on the horizon
+      s->weight = albedo(m, h);
+      return true;
+    }
+#ifdef HAS_PHONG
+    // phong: Lambert + normalised Phong, sampled as their mixture (u.x chooses, then is reused)
+    const float3 wo = -d;
+    if (!(dot(wo, n) > 0.0f)) return false;
+    const float w_lobe = glossy_probability(m), u0 = clamp_unit(u.x);
+    if (u0 < w_lobe)
+      s->direction = to_world(phong_mirror(wo, n), sample_phong_lobe((float2)(u0 / w_lobe, u.y), m->shininess));
+    else
+      s->direction = to_world(n, sample_cosine_hemisphere((float2)((u0 - w_lobe) / (1.0f - w_lobe), u.y)));
+    const float cos_i = dot(s->direction, n);
+    s->pdf = scatter_pdf(m, h, wo, s->direction);
+    if (!(cos_i > 0.0f) || !(s->pdf > 0.0f)) return false;  // sampled below the surface: absorbed
+    s->weight = brdf(m, h, wo, s->direction) * (cos_i / s->pdf);
+    return true;
+#else
+    return false;
+#endif
+  }
+  s->pdf = 0.0f;
+  s->specular = true;
 #ifdef HAS_METAL
   if (m->kind == KIND_METAL) {  // mirror direction plus fuzz times a point in the unit ball
     const float u0 = uniform(g), u1 = uniform(g), u2 = uniform(g);
-    const float z = 1.0f - 2.0f * clamp_unit(u0), s = 2.0f * sqrt(clamp_unit(u0) * (1.0f - clamp_unit(u0)));
+    const float z = 1.0f - 2.0f * clamp_unit(u0), sn = 2.0f * sqrt(clamp_unit(u0) * (1.0f - clamp_unit(u0)));
     const float phi = 2.0f * PI_F * clamp_unit(u1);
-    const float3 ball = cbrt(clamp_unit(u2)) * (float3)(s * cos(phi), s * sin(phi), z);
-    const float3 w = d - 2.0f * dot(d, n) * n + m->fuzz * ball;
-    const float len = length(w);
-    if (!(len > 0.0f)) return false;
-    *wi = w / len;
-    if (!(dot(*wi, n) > 0.0f)) return false;  // pushed below the surface: absorbed
-    *weight = albedo(m, h);
-    *specular = true;
+    const float3 ball = cbrt(clamp_unit(u2)) * (float3)(sn * cos(phi), sn * sin(phi), z);
+    s->direction = normalize_or_zero(reflect(d, n) + m->fuzz * ball);
+    if (!(dot(s->direction, n) > 0.0f)) return false;  // pushed below the surface: absorbed
+    s->weight = albedo(m, h);
     return true;
   }
 #endif
@@ -515,122 +698,231 @@ bool scatter(global const material_t* m, float3 d, const hit_t* h, stream_t* g, 
   if (m->kind == KIND_DIELECTRIC) {  // reflect with probability R (exact Fresnel), else refract
     const float eta = h->front_face ? 1.0f / m->ior : m->ior;
     float3 t;
-    if (refract_dir(d, n, eta, &t) && uniform(g) >= fresnel_dielectric(-dot(d, n), eta)) *wi = t;
-    else *wi = d - 2.0f * dot(d, n) * n;
-    *weight = (float3)(1.0f);
-    *specular = true;
+    if (refract_dir(d, n, eta, &t) && uniform(g) >= fresnel_dielectric(-dot(d, n), eta)) s->direction = t;
+    else s->direction = reflect(d, n);
+    s->weight = (float3)(1.0f);
     return true;
   }
 #endif
-  if (m->kind == KIND_EMITTER) return false;
-  // Lambertian, cosine-weighted: f cos / pdf = albedo (errata C1, C6)
-  const float u0 = clamp_unit(uniform(g)), u1 = clamp_unit(uniform(g));
-  uniform(g);  // material.hpp draws a third number (a lobe) for every surface with a density
-  if (!(dot(-d, n) > 0.0f)) return false;
-  const float r = sqrt(u0), phi = 2.0f * PI_F * u1;
-  *wi = to_world(n, (float3)(r * cos(phi), r * sin(phi), sqrt(1.0f - u0)));
-  if (!(dot(*wi, n) > 0.0f)) return false;  // rounding put it on the horizon
-  *weight = albedo(m, h);
-  *specular = false;
+  return false;
+}
+// [end]
+
+// ---------------------------------------------------------------- lights (lights.hpp)
+typedef struct {
+  float3 wi;        // unit, towards the light
+  float pdf;        // per steradian (a point light: 1), times the choice of the light
+  float3 Le;        // arriving from the light
+  bool delta;       // a point light
+  float3 origin, direction;  // the shadow segment (0, t_max)
+  float t_max;
+} light_sample_t;
+
+// spawn.hpp's spawn_segment: from the hit towards target, stopped short by target's rounding.
+void spawn_segment(const hit_t* h, float3 target, light_sample_t* s) {
+  s->origin = offset_origin(h->p, h->p_error, h->normal, target - h->p);
+  const float3 d = target - s->origin;
+  s->direction = normalize_or_zero(d);
+  s->t_max = sqrt(dot(d, d)) * (1.0f - GAMMA(16));
+}
+
+// [listing cl-sample-one-light]
+// A point on light i, seen from hit h; pdf without the choice of the light.
+bool sample_one(const scene_t* sc, int i, const hit_t* h, float2 u, light_sample_t* s) {
+  global const light_t* l = &sc->lights[i];
+#ifdef HAS_POINT_LIGHTS
+  if (l->kind == LIGHT_POINT) {  // one direction; its "density" is a delta, reported as 1
+    const float3 to = l->position.xyz - h->p;
+    s->wi = normalize_or_zero(to);
+    s->pdf = 1.0f;
+    s->Le = l->intensity.xyz / dot(to, to);
+    s->delta = true;
+    spawn_segment(h, l->position.xyz, s);
+    return !is_black(s->wi) && isfinite(s->Le.x) && isfinite(s->Le.y) && isfinite(s->Le.z);
+  }
+#endif
+  s->delta = false;
+  global const material_t* m = &sc->materials[l->material];
+  hit_t lh;  // the light's surface at the sampled point: its side decides what it emits
+#ifdef HAS_SPHERE_LIGHTS
+  if (l->kind == LIGHT_SPHERE) {
+    const sphere_t sp = sc->spheres[l->object];
+    const float3 axis = cone_axis(sp.center_radius.xyz - h->p);  // every direction from inside
+    const float h_max = cone_one_minus_cos(sp.center_radius.w, length(sp.center_radius.xyz - h->p));
+    s->wi = to_world(axis, sample_cone(u, h_max));
+    const float3 o = offset_origin(h->p, h->p_error, h->normal, s->wi);
+    if (!hit_sphere(sp, o, s->wi, INFINITY, &lh)) return false;
+    lh.front_face = dot(s->wi, lh.normal) < 0.0f;
+    // The shadow ray is the ray that found the point, stopped just short of it.
+    s->origin = o;
+    s->direction = s->wi;
+    s->t_max = lh.t * (1.0f - GAMMA(16));
+    s->pdf = cone_pdf(axis, h_max, s->wi);
+  } else
+#endif
+  {  // uniform in area, p_A = 1/A, turned into solid angle
+    float3 p = (float3)(0.0f), n = (float3)(0.0f), p_error = (float3)(0.0f);
+#ifdef HAS_QUAD_LIGHTS
+    if (l->kind == LIGHT_QUAD) {
+      const quad_t q = sc->quads[l->object];
+      const float a = clamp_unit(u.x), b = clamp_unit(u.y);
+      p = q.corner.xyz + a * q.u.xyz + b * q.v.xyz;
+      n = q.normal_area.xyz;
+      p_error = GAMMA(4) * (fabs(q.corner.xyz) + fabs(a * q.u.xyz) + fabs(b * q.v.xyz));
+    }
+#endif
+#ifdef HAS_TRIANGLE_LIGHTS
+    if (l->kind == LIGHT_TRIANGLES) {  // a triangle by area (u.x picks it, then is stretched), then uniform on it
+      global const light_triangle_t* c = &sc->light_tris[l->first];
+      const float x = clamp_unit(u.x) * c[l->count - 1].b.w;
+      uint lo = 0, hi = l->count;  // upper_bound on the triangles' ends
+      while (lo < hi) {
+        const uint mid = (lo + hi) / 2;
+        if (c[mid].b.w > x) hi = mid;
+        else lo = mid + 1;
+      }
+      const uint k = min(lo, l->count - 1);
+      const float width = c[k].b.w - c[k].a.w;
+      const float ux = width > 0.0f ? clamp_unit((x - c[k].a.w) / width) : 0.0f;
+      const float sq = sqrt(clamp_unit(ux)), b1 = clamp_unit(u.y) * sq, b2 = sq - b1, w = 1.0f - b1 - b2;
+      const float3 A = c[k].a.xyz, B = c[k].b.xyz, C = c[k].c.xyz;
+      p = w * A + b1 * B + b2 * C;
+      n = normalize_or_zero(cross(B - A, C - A));
+      // Triangles are tested in float (the BVH): their hits are as uncertain as hit_bvh's.
+      p_error = GAMMA(64) * (fabs(w * A) + fabs(b1 * B) + fabs(b2 * C));
+    }
+#endif
+    const float3 to = p - h->p;
+    s->wi = normalize_or_zero(to);
+    lh.normal = n;
+    lh.front_face = dot(s->wi, n) < 0.0f;
+    const float cos_l = fabs(dot(n, s->wi));
+    s->pdf = area_to_solid_angle_pdf(1.0f / l->area, dot(to, to), cos_l);
+    spawn_segment(h, p, s);
+    // Stop short of the light's own surface by its rounding too, measured along the ray.
+    s->t_max -= dot(fabs(n), p_error) / fmax(cos_l, 1e-30f);
+  }
+  s->Le = emitted(m, &lh);
+  return s->pdf > 0.0f && isfinite(s->pdf) && !is_black(s->wi);
+}
+// [end]
+
+// [listing cl-sample-light]
+// One light chosen by u_select from the selection CDF (by power or uniformly, as packed), one
+// point on it by u. pdf includes the choice.
+bool sample_light(const scene_t* sc, const hit_t* h, float u_select, float2 u, light_sample_t* s) {
+  const int n = sc->n_lights;
+  if (n == 0) return false;
+  const float x = clamp_unit(u_select) * sc->lights[n - 1].cdf;
+  int lo = 0, hi = n;  // upper_bound: the first light whose CDF exceeds x
+  while (lo < hi) {
+    const int mid = (lo + hi) / 2;
+    if (sc->lights[mid].cdf > x) hi = mid;
+    else lo = mid + 1;
+  }
+  const int i = min(lo, n - 1);
+  if (!sample_one(sc, i, h, u, s)) return false;
+  s->pdf *= sc->lights[i].pdf;
+  return s->pdf > 0.0f && isfinite(s->pdf);
+}
+// [end]
+
+// [listing cl-light-pdf]
+// The density with which sample_light() produces wi from x, given that the ray along wi first
+// meets light i at lh (a BSDF-sampled ray that found a light).
+float light_pdf(const scene_t* sc, int i, float3 x, float3 wi, const hit_t* lh) {
+  global const light_t* l = &sc->lights[i];
+#ifdef HAS_SPHERE_LIGHTS
+  if (l->kind == LIGHT_SPHERE) {
+    const float4 cr = sc->spheres[l->object].center_radius;
+    return cone_pdf(cone_axis(cr.xyz - x), cone_one_minus_cos(cr.w, length(cr.xyz - x)), wi) * l->pdf;
+  }
+#endif
+  return area_to_solid_angle_pdf(1.0f / l->area, lh->t * lh->t, dot(lh->normal, wi)) * l->pdf;
+}
+// [end]
+
+// ---------------------------------------------------------------- the path (path.hpp)
+// The power heuristic (exponent 2) for a sample of density a, the other technique's being b.
+float power_heuristic(float a, float b) {
+  if (!(a > 0.0f)) return 0.0f;
+  if (isinf(a)) return 1.0f;
+  const float r = b / a;
+  return 1.0f / (1.0f + r * r);
+}
+
+// [listing cl-roulette]
+// Russian roulette: true if the path goes on (then beta has been divided by q).
+bool survives_roulette(float3* beta, int bounce, stream_t* g) {
+  if (bounce < RR_DEPTH) return true;
+  const float q = fmin(1.0f, fmax(beta->x, fmax(beta->y, beta->z)));
+  if (!(uniform(g) < q)) return false;
+  *beta /= q;
   return true;
 }
 // [end]
 
-#ifdef NEE
-// scene.hpp's sample_light(): one light uniformly, a point on it; pdf per steradian.
-bool sample_light(const scene_t* sc, float3 x, stream_t* g, float3* point, float3* wi, float* pdf,
-                  float3* radiance) {
-  const float u_light = uniform(g), u0 = uniform(g), u1 = uniform(g);
-  if (sc->n_lights == 0) return false;
-  const int n = sc->n_lights;
-  const light_t l = sc->lights[clamp((int)(u_light * (float)n), 0, n - 1)];
-  float3 Le;
-#if defined(HAS_QUADS)
-  if (l.kind == 1) {
-    const quad_t q = sc->quads[l.index];
-    Le = sc->materials[q.material].radiance.xyz;
-    *point = q.corner.xyz + clamp_unit(u0) * q.u.xyz + clamp_unit(u1) * q.v.xyz;
-    const float3 to = *point - x;
-    const float d2 = dot(to, to);
-    *wi = normalize(to);
-    const float cos_l = -dot(q.normal_area.xyz, *wi);
-    *pdf = fabs(cos_l) > 0.0f ? d2 / (q.normal_area.w * fabs(cos_l)) / (float)n : 0.0f;
-    *radiance = cos_l > 0.0f ? Le : (float3)(0.0f);
-  }
-#endif
-#if defined(HAS_SPHERES)
-  if (l.kind == 0) {  // uniform in the cone of directions that see the sphere (sampling.hpp)
-    const sphere_t s = sc->spheres[l.index];
-    Le = sc->materials[s.material].radiance.xyz;
-    const float3 to_c = s.center_radius.xyz - x;
-    const float dist = length(to_c), r = s.center_radius.w;
-    float h_max = 2.0f;
-    if (dist > r) {
-      const float sn = r / dist, sin2 = sn * sn;
-      h_max = fmax(sin2 / (1.0f + sqrt(1.0f - sin2)), FLT_MIN);
-    }
-    const float3 axis = dist > 0.0f ? to_c / dist : (float3)(0.0f, 0.0f, 1.0f);
-    const float hh = clamp_unit(u0) * h_max;
-    const float sn = sqrt(hh * (2.0f - hh)), phi = 2.0f * PI_F * clamp_unit(u1);
-    *wi = to_world(axis, (float3)(sn * cos(phi), sn * sin(phi), 1.0f - hh));
-    hit_t lh;
-    if (!hit_sphere(s, x, *wi, INFINITY, &lh)) return false;
-    *point = lh.p;
-    *pdf = 1.0f / (2.0f * PI_F * h_max) / (float)n;
-    *radiance = dot(*wi, lh.normal) < 0.0f ? Le : (float3)(0.0f);
-  }
-#endif
-  return *pdf > 0.0f && isfinite(*pdf);
-}
+// The algorithm is a build option: -DMETHOD_NAIVE, -DMETHOD_NEE or -DMETHOD_MIS (path.hpp's
+// path_options::method). The constants below fold away the code a method does not run.
+#if defined(METHOD_MIS)
+#define NEE_ON true
+#define MIS_ON true
+#elif defined(METHOD_NEE)
+#define NEE_ON true
+#define MIS_ON false
+#elif defined(METHOD_NAIVE)
+#define NEE_ON false
+#define MIS_ON false
+#else
+#error "build with -DMETHOD_NAIVE, -DMETHOD_NEE or -DMETHOD_MIS (gpu_scene.hpp's build_options)"
 #endif
 
 // [listing cl-path]
-// path.hpp's loop: L sums the light found, beta is the throughput (f cos / pdf products).
-float3 radiance(const scene_t* sc, float3 o, float3 D, stream_t* g) {
+float3 path_radiance(const scene_t* sc, float3 o, float3 D, stream_t* g) {
+  const bool nee = NEE_ON, mis = MIS_ON;
   float3 L = (float3)(0.0f), beta = (float3)(1.0f);
-  bool count_emission = true;  // camera rays, after a specular bounce, or without NEE
-  for (int depth = 0; depth <= MAX_DEPTH; ++depth) {
+  bool specular = true;    // the last bounce had no density (camera rays count as specular)
+  float bsdf_pdf = 0.0f;   // the density of the last scattered direction
+  float3 from = (float3)(0.0f);  // the point it left from
+  for (int bounce = 0;; ++bounce) {
     hit_t h;
-    if (!nearest_hit(sc, o, D, &h)) {
-      L += beta * sc->background;
-      break;
-    }
+    if (!nearest_hit(sc, o, D, &h)) return L + beta * sc->background;  // no sampler knows the sky
     global const material_t* m = &sc->materials[h.material];
 #ifdef HAS_EMITTERS
-    if (count_emission) L += beta * emitted(m, &h);
+    // Emission found by this ray: all of it, its MIS share, or none (nee: the light sample at
+    // the previous hit counted this light already).
+    const float3 Le = emitted(m, &h);
+    if (!is_black(Le)) {
+      if (!nee || specular || h.light < 0) L += beta * Le;
+      else if (mis) L += beta * Le * power_heuristic(bsdf_pdf, light_pdf(sc, h.light, from, D, &h));
+    }
 #endif
-    if (m->kind == KIND_EMITTER || depth == MAX_DEPTH) break;
-#ifdef NEE
-    if (m->kind == KIND_LAMBERTIAN) {  // the next event: a point on a light
-      float3 point, wi, Le;
-      float pdf = 0.0f;
-      if (sample_light(sc, h.p, g, &point, &wi, &pdf, &Le) && any(Le != (float3)(0.0f))) {
-        const float3 so = offset_origin(h.p, h.p_error, h.normal, point - h.p);
-        const float3 sd = point - so;
-        const float dist = length(sd);
-        const float3 n = facing(&h);
-        const float cos_i = dot(n, wi);
-        if (cos_i > 0.0f && dot(-D, n) > 0.0f && !occluded(sc, so, sd / dist, dist * (1.0f - GAMMA(16))))
-          L += beta * albedo(m, &h) * (cos_i / PI_F) * Le / pdf;
+    if (bounce == MAX_DEPTH) return L;
+    const float3 wo = -D;
+    if (nee && has_density(m)) {  // the next event: a point on a light
+      const float u_select = uniform(g);
+      const float2 u = uniform2(g);
+      light_sample_t e;
+      if (sample_light(sc, &h, u_select, u, &e) && !is_black(e.Le)) {
+        const float3 f_cos = brdf_cos(m, &h, wo, e.wi);
+        if (!is_black(f_cos)) {
+          if (!occluded(sc, e.origin, e.direction, e.t_max)) {
+            const float w = mis && !e.delta ? power_heuristic(e.pdf, scatter_pdf(m, &h, wo, e.wi)) : 1.0f;
+            L += beta * f_cos * e.Le * (w / e.pdf);
+          }
+        }
       }
     }
-#endif
-    float3 wi, weight;
-    bool specular;
-    if (!scatter(m, D, &h, g, &wi, &weight, &specular)) break;  // absorbed
-    beta *= weight;
-#ifdef NEE
-    count_emission = specular;
-#endif
-    if (depth >= RR_DEPTH) {  // Russian roulette: go on with probability q, divide by q
-      const float q = fmin(1.0f, fmax(beta.x, fmax(beta.y, beta.z)));
-      if (!(uniform(g) < q)) break;
-      beta /= q;
-    }
-    o = offset_origin(h.p, h.p_error, h.normal, wi);
-    D = wi;
+    scatter_t s;
+    if (!scatter(m, D, &h, g, &s)) return L;  // absorbed (or a light, which does not reflect)
+    beta *= s.weight;  // f cos / pdf: the cosine is counted once, inside the weight
+    specular = s.specular;
+    bsdf_pdf = s.pdf;
+    from = h.p;
+    if (!survives_roulette(&beta, bounce, g)) return L;
+    o = offset_origin(h.p, h.p_error, h.normal, s.direction);
+    D = s.direction;
   }
-  return L;
 }
 // [end]
 
@@ -642,21 +934,22 @@ float srgb_byte(float c) {  // image_io's encoding: linear to sRGB, 8 bits
 
 // [listing cl-kernel]
 // Adds `samples` samples (indices sample_offset, sample_offset + 1, ...) to each pixel's sum in
-// accum (sample_offset 0: starts it afresh), and writes the running mean as sRGB bytes for
-// display, bottom row first as OpenGL textures are stored.
+// accum and their squares to accum_sq (sample_offset 0: starts both afresh), and writes the
+// running mean as sRGB bytes for display, bottom row first as OpenGL textures are stored.
 kernel void render(global const sphere_t* spheres, global const quad_t* quads,
                    global const plane_t* planes, global const triangle_t* tris,
                    global const node4_t* nodes, global const material_t* materials,
-                   global const light_t* lights, global const camera_t* camera,
-                   global float4* accum, global uchar4* display, int n_spheres, int n_quads,
-                   int n_planes, int n_lights, int n_nodes, uint width, uint height, uint sample_offset,
-                   uint samples, ulong seed, float4 background) {
+                   global const light_t* lights, global const light_triangle_t* light_tris,
+                   global const camera_t* camera, global float4* accum, global float4* accum_sq,
+                   global uchar4* display, int n_spheres, int n_quads, int n_planes, int n_lights,
+                   int n_nodes, uint width, uint height, uint sample_offset, uint samples, ulong seed,
+                   float4 background) {
   const uint x = get_global_id(0), y = get_global_id(1);
   if (x >= width || y >= height) return;
-  const scene_t sc = {spheres, quads, planes, tris, nodes, materials, lights,
+  const scene_t sc = {spheres, quads, planes, tris, nodes, materials, lights, light_tris,
                       n_spheres, n_quads, n_planes, n_lights, n_nodes, background.xyz};
   const camera_t cam = *camera;
-  float4 sum = (float4)(0.0f);  // w: samples that were finite
+  float4 sum = (float4)(0.0f), sum_sq = (float4)(0.0f);  // sum.w: samples that were finite
 #ifdef WEAK_SEED
   stream_t g = stream_make(seed, x, y, width, 0);  // one stream for the pixel, every frame the same
 #endif
@@ -674,12 +967,16 @@ kernel void render(global const sphere_t* spheres, global const quad_t* quads,
       o += r * cos(phi) * cam.u.xyz + r * sin(phi) * cam.v.xyz;
     }
 #endif
-    const float3 c = radiance(&sc, o, normalize(target - o), &g);
-    if (isfinite(c.x) && isfinite(c.y) && isfinite(c.z)) sum += (float4)(c, 1.0f);  // render.hpp drops NaN
+    const float3 c = path_radiance(&sc, o, normalize(target - o), &g);
+    if (isfinite(c.x) && isfinite(c.y) && isfinite(c.z)) {  // render.hpp drops NaN
+      sum += (float4)(c, 1.0f);
+      sum_sq += (float4)(c * c, 0.0f);
+    }
   }
   const uint i = y * width + x;
   const float4 total = sample_offset == 0 ? sum : accum[i] + sum;
   accum[i] = total;
+  accum_sq[i] = sample_offset == 0 ? sum_sq : accum_sq[i] + sum_sq;
   const float3 mean = total.xyz / fmax(total.w, 1.0f);
   display[(height - 1 - y) * width + x] =
       (uchar4)((uchar)srgb_byte(mean.x), (uchar)srgb_byte(mean.y), (uchar)srgb_byte(mean.z), 255);
@@ -697,10 +994,13 @@ kernel void layout(global uint* out) {
   node4_t v_node4_t;
   material_t v_material_t;
   light_t v_light_t;
+  light_triangle_t v_light_triangle_t;
   camera_t v_camera_t;
-  const uint values[16] = {SIZE_AND(sphere_t, material), SIZE_AND(quad_t, material),
-                           SIZE_AND(plane_t, material), SIZE_AND(triangle_t, material),
+  const uint values[24] = {SIZE_AND(sphere_t, material), SIZE_AND(sphere_t, light),
+                           SIZE_AND(quad_t, material), SIZE_AND(plane_t, material),
+                           SIZE_AND(triangle_t, material), SIZE_AND(triangle_t, light),
                            SIZE_AND(node4_t, count), SIZE_AND(material_t, fuzz),
-                           SIZE_AND(light_t, index), SIZE_AND(camera_t, lens_radius)};
-  for (int i = 0; i < 16; ++i) out[i] = values[i];
+                           SIZE_AND(material_t, shininess), SIZE_AND(light_t, kind),
+                           SIZE_AND(light_t, cdf), SIZE_AND(light_triangle_t, c)};
+  for (int i = 0; i < 24; ++i) out[i] = values[i];
 }

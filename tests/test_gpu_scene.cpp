@@ -15,49 +15,59 @@ namespace {
 bool has(const std::string& options, const std::string& word) {
   return (options + " ").find(" " + word + " ") != std::string::npos;
 }
+path_options depth(int d, integrator method = integrator::mis) {
+  path_options o;
+  o.max_depth = d;
+  o.method = method;
+  return o;
+}
 }  // namespace
 
-TEST_CASE("diffuse spheres: only the sphere, checker and emitter switches") {
-  const gpu_scene g = pack_scene(spheres_scene(), 64, 32, 8);
+TEST_CASE("diffuse spheres: only the sphere, checker, emitter and sphere-light switches") {
+  const gpu_scene g = pack_scene(spheres_scene(), 64, 32, depth(8));
   CHECK(g.spheres.size() == 5);
   CHECK(g.quads.empty());
   CHECK(g.triangles.empty());
   CHECK(g.nodes.empty());
   REQUIRE(g.lights.size() == 1);
-  CHECK(g.lights[0].kind == 0);  // a sphere
-  CHECK(g.lights[0].index == 4);
+  CHECK(g.lights[0].kind == gpu_light_sphere);
+  CHECK(g.lights[0].object == 4);
+  CHECK(g.lights[0].pdf == 1.0f);
+  CHECK(g.lights[0].cdf == 1.0f);
+  CHECK(g.spheres[4].light == 0);  // the lamp knows its light, for MIS
+  CHECK(g.spheres[0].light == -1);
   CHECK(g.spheres[0].center_radius.w == 1000.0f);
   const std::string o = build_options(g.features);
-  CHECK(has(o, "-DHAS_SPHERES"));
-  CHECK(has(o, "-DHAS_CHECKER"));
-  CHECK(has(o, "-DHAS_EMITTERS"));
-  CHECK(has(o, "-DNEE"));
-  CHECK(has(o, "-DMAX_DEPTH=8"));
-  for (const char* absent : {"-DHAS_QUADS", "-DHAS_PLANES", "-DHAS_TRIANGLES", "-DHAS_METAL",
-                             "-DHAS_DIELECTRIC", "-DHAS_THIN_LENS", "-DWEAK_SEED"})
-    CHECK_FALSE(has(o, absent));
+  CHECK(o == "-cl-std=CL1.2 -DHAS_SPHERES -DHAS_CHECKER -DHAS_EMITTERS -DHAS_SPHERE_LIGHTS -DMETHOD_MIS "
+             "-DMAX_DEPTH=8 -DRR_DEPTH=3");
   const std::string all = build_options(g.features, true);  // every feature, same algorithm
-  for (const char* present : {"-DHAS_QUADS", "-DHAS_PLANES", "-DHAS_TRIANGLES", "-DHAS_METAL",
-                              "-DHAS_DIELECTRIC", "-DHAS_THIN_LENS", "-DNEE"})
+  for (const char* present : {"-DHAS_QUADS", "-DHAS_PLANES", "-DHAS_TRIANGLES", "-DHAS_METAL", "-DHAS_DIELECTRIC",
+                              "-DHAS_PHONG", "-DHAS_QUAD_LIGHTS", "-DHAS_TRIANGLE_LIGHTS", "-DHAS_POINT_LIGHTS",
+                              "-DHAS_THIN_LENS", "-DMETHOD_MIS"})
     CHECK(has(all, present));
+  CHECK_FALSE(has(all, "-DMETHOD_NEE"));
 }
 
-TEST_CASE("the Cornell box with glass: quads, a quad light, a dielectric; NEE can be off") {
+TEST_CASE("the Cornell box with glass: quads, a quad light, a dielectric; the method is a switch") {
   const scene sc = cornell_box<double>(cornell_variant::glass);
-  const gpu_scene g = pack_scene(sc, 32, 32, 5, false);
+  const gpu_scene g = pack_scene(sc, 32, 32, depth(5, integrator::naive));
   CHECK(g.quads.size() == 12);  // five walls, the light, six box faces
   CHECK(g.spheres.size() == 1);
   REQUIRE(g.lights.size() == 1);
-  CHECK(g.lights[0].kind == 1);
-  const gpu_quad& light = g.quads[std::size_t(g.lights[0].index)];
+  CHECK(g.lights[0].kind == gpu_light_quad);
+  const gpu_quad& light = g.quads[std::size_t(g.lights[0].object)];
+  CHECK(light.light == 0);
+  CHECK(g.lights[0].area == doctest::Approx(0.2).epsilon(1e-6));
   CHECK(light.normal_area.w == doctest::Approx(0.2).epsilon(1e-6));  // 0.5 x 0.4, float
   CHECK(light.normal_area.y == -1.0f);                                // facing down
   CHECK(g.materials[std::size_t(light.material)].kind == gpu_emitter);
   const std::string o = build_options(g.features);
   CHECK(has(o, "-DHAS_DIELECTRIC"));
   CHECK_FALSE(has(o, "-DHAS_METAL"));
-  CHECK_FALSE(has(o, "-DNEE"));
+  CHECK(has(o, "-DMETHOD_NAIVE"));
+  CHECK(has(o, "-DHAS_QUAD_LIGHTS"));
   CHECK(has(o, "-DMAX_DEPTH=5"));
+  CHECK(has(build_options(pack_scene(sc, 32, 32, depth(5, integrator::nee)).features), "-DMETHOD_NEE"));
   CHECK(g.materials[std::size_t(g.spheres[0].material)].ior == 1.5f);
 }
 
@@ -75,7 +85,7 @@ TEST_CASE("triangles: the triangle BVH's nodes byte for byte, materials by input
     m.triangles.push_back({base, base + 1, base + 2});
   }
   sc.add(m, b);
-  const gpu_scene g = pack_scene(sc, 16, 16, 8);
+  const gpu_scene g = pack_scene(sc, 16, 16, depth(8));
   REQUIRE(g.triangles.size() == 21);
   CHECK(g.features.triangles);
   CHECK(g.features.metal);
@@ -90,6 +100,7 @@ TEST_CASE("triangles: the triangle BVH's nodes byte for byte, materials by input
   CHECK(std::memcmp(g.nodes.data(), bvh.nodes().data(), g.nodes.size() * sizeof(gpu_node4)) == 0);
   for (const gpu_triangle& t : g.triangles) {
     CHECK(t.material == (t.id == 0 ? a : b));  // input 0 is the lone triangle
+    CHECK(t.light == -1);                        // nothing glows
     CHECK(t.a.x == tris[t.id].a.x);
     CHECK(t.b.x == tris[t.id].b.x);
     CHECK(t.c.z == tris[t.id].c.z);
@@ -97,8 +108,8 @@ TEST_CASE("triangles: the triangle BVH's nodes byte for byte, materials by input
 }
 
 TEST_CASE_TEMPLATE("a float scene packs like a double one", T, float, double) {
-  const gpu_scene g = pack_scene(cornell_box<T>(cornell_variant::spheres), 32, 32, 8);
-  const gpu_scene d = pack_scene(cornell_box<double>(cornell_variant::spheres), 32, 32, 8);
+  const gpu_scene g = pack_scene(cornell_box<T>(cornell_variant::spheres), 32, 32, depth(8));
+  const gpu_scene d = pack_scene(cornell_box<double>(cornell_variant::spheres), 32, 32, depth(8));
   REQUIRE(g.quads.size() == d.quads.size());
   REQUIRE(g.spheres.size() == 2);
   // float vs double rounding of the same decimal inputs: within one float ulp (relative 2^-23)
@@ -111,7 +122,7 @@ TEST_CASE_TEMPLATE("a float scene packs like a double one", T, float, double) {
 
 TEST_CASE("the camera is prepared for the image's aspect ratio, in float") {
   scene sc = spheres_scene();
-  const gpu_scene g = pack_scene(sc, 200, 100, 8);
+  const gpu_scene g = pack_scene(sc, 200, 100, depth(8));
   camera c = sc.camera;
   c.aspect = 2.0;
   const auto p = c.prepare();
@@ -121,33 +132,96 @@ TEST_CASE("the camera is prepared for the image's aspect ratio, in float") {
   CHECK(g.camera.lens_radius == 0.0f);
   CHECK_FALSE(g.features.thin_lens);
   sc.camera.aperture = 0.1;
-  CHECK(pack_scene(sc, 200, 100, 8).features.thin_lens);
+  CHECK(pack_scene(sc, 200, 100, depth(8)).features.thin_lens);
 }
 
-TEST_CASE("what the kernel does differently is noted: phong, point lights, vertex normals") {
+TEST_CASE("phong and point lights are packed, not noted: kd, ks, shininess; intensity and position") {
   scene sc;
   const int p = sc.add_material(material::phong(rgb(0.6f, 0.2f, 0.1f), rgb(0.3f), 40));
   sc.add(sphere{{0, 0, -3}, 1}, p);
   sc.add(point_light_t<double>{{0, 5, 0}, rgb(10)});
-  const gpu_scene g = pack_scene(sc, 8, 8, 8);
-  REQUIRE(g.notes.size() == 3);
-  CHECK(g.notes[0].find("phong") != std::string::npos);
-  CHECK(g.notes[1].find("point light") != std::string::npos);
-  CHECK(g.notes[2].find("the image is black") != std::string::npos);
-  CHECK(g.materials[0].kind == gpu_lambertian);
+  const gpu_scene g = pack_scene(sc, 8, 8, depth(8));
+  CHECK(g.materials[0].kind == gpu_phong);
   CHECK(g.materials[0].albedo_a.x == 0.6f);  // kd
+  CHECK(g.materials[0].albedo_b.x == 0.3f);  // ks
+  CHECK(g.materials[0].shininess == 40.0f);
+  REQUIRE(g.lights.size() == 1);
+  CHECK(g.lights[0].kind == gpu_light_point);
+  CHECK(g.lights[0].position.y == 5.0f);
+  CHECK(g.lights[0].intensity.x == 10.0f);
+  const std::string o = build_options(g.features);
+  CHECK(has(o, "-DHAS_PHONG"));
+  CHECK(has(o, "-DHAS_POINT_LIGHTS"));
+  CHECK_FALSE(has(o, "-DHAS_EMITTERS"));
+  // path.hpp's rule, and the same words: naive cannot find a point light.
+  CHECK_THROWS_WITH_AS(pack_scene(sc, 8, 8, depth(8, integrator::naive)), doctest::Contains("point light"), error);
+}
+
+TEST_CASE("the light table is light_set_t's: power CDF, mesh area CDF, the light of every triangle") {
+  scene sc;
+  const int white = sc.add_material(material::lambertian(rgb(0.5f)));
+  const int dim = sc.add_material(material::emitter(rgb(1.0f)));
+  const int bright = sc.add_material(material::emitter(rgb(3.0f), true));
+  sc.add(quad{{-1, 0, -1}, {2, 0, 0}, {0, 0, 2}}, white);
+  sc.add(triangle{{0, 2, 0}, {0.5, 2, 0}, {0, 2, 0.5}}, dim);
+  mesh m;  // two triangles of areas 0.5 and 2
+  m.positions = {{0, 3, 0}, {1, 3, 0}, {0, 3, 1}, {2, 3, 0}, {0, 3, 2}};
+  m.triangles = {{0, 1, 2}, {1, 3, 4}};
+  sc.add(m, bright);
+  sc.add(point_light_t<double>{{0, 5, 0}, rgb(2)});
+  const light_set lights(sc);
+  const gpu_scene g = pack_scene(sc, 8, 8, depth(4));
+  REQUIRE(g.lights.size() == lights.size());
+  double cdf = 0;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    CHECK(g.lights[i].pdf == float(lights.selection_pdf(int(i))));
+    CHECK(g.lights[i].cdf == float(cdf += lights.selection_pdf(int(i))));
+  }
+  const int tri = lights.index_of({shape_kind::triangle, 0}), mesh_light = lights.index_of({shape_kind::mesh, 0});
+  REQUIRE(tri >= 0);
+  REQUIRE(mesh_light >= 0);
+  const gpu_light& lt = g.lights[std::size_t(tri)];
+  CHECK(lt.kind == gpu_light_triangles);
+  CHECK(lt.count == 1);
+  CHECK(g.light_triangles[std::size_t(lt.first)].b.w == doctest::Approx(0.125));
+  const gpu_light& lm = g.lights[std::size_t(mesh_light)];
+  CHECK(lm.count == 2);
+  CHECK(lm.area == doctest::Approx(0.5 + m.triangle(1).area()));
+  CHECK(g.light_triangles[std::size_t(lm.first)].a.w == 0.0f);
+  CHECK(g.light_triangles[std::size_t(lm.first) + 1].b.w == doctest::Approx(double(lm.area)));
+  for (const gpu_triangle& t : g.triangles) CHECK(t.light == (t.id == 0 ? tri : mesh_light));
+  CHECK(g.quads[0].light == -1);
+  const std::string o = build_options(g.features);
+  CHECK(has(o, "-DHAS_TRIANGLE_LIGHTS"));
+  CHECK(has(o, "-DHAS_POINT_LIGHTS"));
+  CHECK_FALSE(has(o, "-DHAS_QUAD_LIGHTS"));
+}
+
+TEST_CASE("what the kernel cannot run is an error naming it: user shapes, custom BSDFs, float overflow") {
+  struct disk final : user_shape_t<double> {
+    std::string name() const override { return "my_disk"; }
+    aabb_t<double> bounds() const override { return {vec3(-1), vec3(1)}; }
+    bool intersect(const ray&, double, double, hit&) const override { return false; }
+  };
+  scene a;
+  a.add(std::make_shared<const disk>(), a.add_material(material::lambertian(rgb(0.5f))));
+  CHECK_THROWS_WITH_AS(pack_scene(a, 8, 8, depth(4)), doctest::Contains("user shape ('my_disk')"), error);
+  scene far;
+  far.add(sphere{{1e300, 0, 0}, 1}, far.add_material(material::lambertian(rgb(0.5f))));
+  CHECK_THROWS_WITH_AS(pack_scene(far, 8, 8, depth(4)), doctest::Contains("sphere 0 does not fit in float"), error);
 }
 
 TEST_CASE("extreme case: an empty scene packs to empty arrays and the bare options") {
   scene sc;
   sc.background = rgb(0.25f);
-  const gpu_scene g = pack_scene(sc, 1, 1, 0);
+  const gpu_scene g = pack_scene(sc, 1, 1, depth(0));
   CHECK(g.spheres.empty());
   CHECK(g.materials.empty());
   CHECK(g.lights.empty());
   CHECK(g.background.x == 0.25f);
-  CHECK(build_options(g.features) == "-cl-std=CL1.2 -DNEE -DMAX_DEPTH=0");
-  CHECK_THROWS_AS(pack_scene(sc, 0, 10, 8), error);
+  CHECK(build_options(g.features) == "-cl-std=CL1.2 -DMETHOD_MIS -DMAX_DEPTH=0 -DRR_DEPTH=3");
+  CHECK_THROWS_AS(pack_scene(sc, 0, 10, depth(8)), error);
+  CHECK_THROWS_WITH_AS(pack_scene(sc, 1, 1, depth(-1)), doctest::Contains("depth"), error);
 }
 
 TEST_CASE("reference_sample draws the pixel jitter first, then the lens, as the kernel does") {

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 
 using namespace zraka;
@@ -251,4 +252,15 @@ TEST_CASE("lights: a user shape with area sampling is a light; without it, hit o
     }
     CHECK(sum / n == doctest::Approx(2 * pi<double> * (1 - 2 / std::sqrt(5.0))).epsilon(0.01));
   }
+}
+
+TEST_CASE("lights: a NaN or infinite glow is an error, not a silent light") {
+  scene sc;
+  material m = material::lambertian(rgb(0.5f));
+  m.radiance = rgb(1, std::numeric_limits<float>::quiet_NaN(), 1);
+  sc.add(sphere{{0, 0, 0}, 1}, sc.add_material(m));
+  CHECK_THROWS_WITH_AS(light_set(sc), doctest::Contains("non-finite"), error);
+  scene pl;
+  pl.add(point_light_t<double>{{0, 1, 0}, rgb(std::numeric_limits<float>::infinity())});
+  CHECK_THROWS_WITH_AS(light_set(pl), doctest::Contains("point light 0"), error);
 }

@@ -1,4 +1,4 @@
-// links: yaml-cpp tinyobjloader
+// links: yaml-cpp
 #include <zraka/scene_argument.hpp>
 
 #include <doctest/doctest.h>

@@ -1,4 +1,4 @@
-// links: yaml-cpp tinyobjloader
+// links: yaml-cpp
 // The Whitted tracer: pixel values against the closed-form Phong value under a point light;
 // the same bits on any number of threads; shadows from occluders at any distance; total
 // internal reflection inside glass and energy conservation of Fresnel splitting; a scene file

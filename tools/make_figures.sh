@@ -63,6 +63,7 @@ fi
 "$bin/assignment-01-cylinder-render" --out "${bin%/build/bin}/book/assignments/01-cylinder/target.png" >/dev/null
 "$bin/assignment-02-ggx-render" --out "${bin%/build/bin}/book/assignments/02-ggx/target.png" >/dev/null
 "$bin/assignment-03-material-render" --out "${bin%/build/bin}/book/assignments/03-material/target.png" >/dev/null
+"$bin/assignment-04-shape-render" --out "${bin%/build/bin}/book/assignments/04-shape/target.png" >/dev/null
 # --- 2.1, 2.2, 4.1
 "$bin/shaders" --out 2.1-shaders.png >/dev/null && cp 2.1-shaders.png "$fig/"
 "$bin/shaders" --shader normal --out 2.1-normal.png >/dev/null && cp 2.1-normal.png "$fig/"
@@ -79,6 +80,8 @@ done
 "$bin/realtime" --headless --scene cornell-glass --width 240 --height 240 --frames 64 --out 4.3-cornell.png >/dev/null && cp 4.3-cornell.png "$fig/"
 "$bin/realtime" --headless --width 200 --height 200 --frames 1 --weak-seed --out 4.3-weak-seed.png >/dev/null && cp 4.3-weak-seed.png "$fig/"
 "$bin/realtime" --headless --width 200 --height 200 --frames 1 --out 4.3-hashed-seed.png >/dev/null && cp 4.3-hashed-seed.png "$fig/"
+"$bin/realtime" --headless --scene "$fig/../../scenes/triangle-light.yaml" --out 4.3-triangle-light.png >/dev/null && cp 4.3-triangle-light.png "$fig/"
+"$bin/pathtrace" --scene "$fig/../../scenes/triangle-light.yaml" --integrator mis --out 4.3-triangle-light-cpu >/dev/null && cp 4.3-triangle-light-cpu.png "$fig/"
 xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "${xvfb[@]}" "$bin/realtime" --frames 16 --width 320 --height 240 --scene cornell-spheres --screenshot 4.3-viewer.png >/dev/null && cp 4.3-viewer.png "$fig/"
 # --- 2.3, 4.2 (path tracing; several minutes on two cores)

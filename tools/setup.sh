@@ -6,7 +6,7 @@ set -euo pipefail
 core=(build-essential cmake pkg-config
       libglm-dev libstb-dev libglfw3-dev libepoxy-dev
       opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
-      doctest-dev libyaml-cpp-dev libtinyobjloader-dev libcli11-dev libfmt-dev
+      doctest-dev libyaml-cpp-dev libcli11-dev libfmt-dev
       xvfb xauth libgl1-mesa-dri python3)
 extras=(libembree-dev pandoc python3-venv)  # python3-venv: tools/plot-setup.sh (book plots)
 

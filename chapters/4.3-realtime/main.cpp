@@ -5,7 +5,10 @@
 // back to the host and goes into a texture drawn over the whole window (PoCL, the CPU OpenCL
 // this course runs on, cannot share buffers with OpenGL). Moving the camera starts the sum again.
 //
-// --headless renders --frames frames with the same kernel and writes --out, without a window.
+// --headless renders with the same kernel and writes --out, without a window. A scene file's
+// settings (width, height, spp, max_depth, seed) are used unless given on the command line.
+// --integrator naive|nee|mis picks path.hpp's method, compiled into the kernel. What the kernel
+// cannot render (a user shape, a custom BSDF) is an error before the first frame.
 // The program prints the device, the kernel options, size, spp, depth and time together
 // (errata C12), and in window mode the viewer's frame rate next to the kernel's alone.
 #include <zraka/cl.hpp>
@@ -127,25 +130,28 @@ void install_callbacks(GLFWwindow* w, viewer_input& in) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_name = "spheres", out, screenshot, kernel_file = "kernels/pathtrace.cl";
-  int width = 512, height = 512, frames = 0, spf = 1, depth = 8, device_index = 0;
-  std::uint64_t seed = 1;
-  bool headless = false, no_nee = false, weak_seed = false, all_features = false;
+  std::string scene_name = "spheres", out, screenshot, kernel_file = "kernels/pathtrace.cl", method = "mis";
+  std::optional<int> width_opt, height_opt, frames_opt, spp_opt, depth_opt;
+  std::optional<std::uint64_t> seed_opt;
+  int spf = 1, device_index = 0, rr_depth = 3;
+  bool headless = false, weak_seed = false, all_features = false;
   CLI::App app{"Chapter 4.3: real-time path tracing with OpenCL, shown with OpenGL"};
   app.add_option("--scene", scene_name, "spheres, cornell (glass), cornell-boxes, cornell-spheres, "
                                         "or a .yaml scene file");
-  app.add_option("--width", width, "image width in pixels");
-  app.add_option("--height", height, "image height in pixels");
-  app.add_option("--frames", frames, "frames to render, then stop (window mode: 0 = until closed; "
-                                     "headless: default 8)");
+  app.add_option("--width", width_opt, "image width in pixels (default: a scene file's, else 512)");
+  app.add_option("--height", height_opt, "image height in pixels (default: a scene file's, else 512)");
+  app.add_option("--frames", frames_opt, "frames to render, then stop (window mode: 0 = until closed)");
+  app.add_option("--spp", spp_opt, "headless: samples per pixel in all (default: a scene file's, else 8 "
+                                   "frames' worth)");
   app.add_option("--spp-per-frame", spf, "samples per pixel added by each frame");
-  app.add_option("--depth", depth, "maximum bounces");
-  app.add_option("--seed", seed, "random seed");
+  app.add_option("--depth", depth_opt, "maximum bounces (default: a scene file's max_depth, else 8)");
+  app.add_option("--rr-depth", rr_depth, "Russian roulette from this many bounces on");
+  app.add_option("--integrator", method, "naive, nee or mis (path.hpp's methods; default mis)");
+  app.add_option("--seed", seed_opt, "random seed (default: a scene file's, else 1)");
   app.add_option("--device", device_index, "OpenCL device number (chapter 3.3's --list)");
   app.add_flag("--headless", headless, "no window: render --frames frames and write --out");
   app.add_option("--out", out, "headless: the image to write (.png, .ppm or .pfm)");
   app.add_option("--screenshot", screenshot, "window mode: save the window after --frames frames");
-  app.add_flag("--no-nee", no_nee, "no next-event estimation (the thesis's naive loop)");
   app.add_flag("--weak-seed", weak_seed, "seed each pixel with its raw coordinates, as the thesis's "
                                          "tutorial did (errata C7), to see the pattern noise");
   app.add_flag("--all-features", all_features, "compile every code path, not just the scene's");
@@ -155,16 +161,38 @@ int main(int argc, char** argv) {
 
   return zraka::guarded([&] {
     const stopwatch clock;
+    // A scene file brings its own settings; the built-in scenes use the program's defaults.
+    const bool from_file = scene_name.ends_with(".yaml");
+    scene sc = from_file ? load_scene_file(scene_name).sc : realtime_scene(scene_name);
+    const int width = width_opt.value_or(from_file ? sc.settings.width : 512);
+    const int height = height_opt.value_or(from_file ? sc.settings.height : 512);
+    const int depth = depth_opt.value_or(from_file ? sc.settings.max_depth : 8);
+    const std::uint64_t seed = seed_opt.value_or(from_file ? sc.settings.seed : 1);
+    int frames = frames_opt.value_or(0);
     if (width < 1 || height < 1 || width > 4096 || height > 4096)
       throw error("image size " + std::to_string(width) + "x" + std::to_string(height) +
                   " is out of range (1..4096)");
     if (frames < 0) throw error("--frames must not be negative, got " + std::to_string(frames));
     if (spf < 1 || spf > 4096) throw error("--spp-per-frame must be in 1..4096, got " + std::to_string(spf));
     if (depth < 0 || depth > 64) throw error("--depth must be in 0..64, got " + std::to_string(depth));
+    if (rr_depth < 0) throw error("--rr-depth must not be negative, got " + std::to_string(rr_depth));
+    if (frames_opt && spp_opt) throw error("give --frames or --spp, not both");
+    if (!headless && spp_opt) throw error("--spp is for --headless; in window mode use --frames");
     if (headless && !screenshot.empty()) throw error("--screenshot is for window mode; use --out with --headless");
     if (!headless && !out.empty()) throw error("--out is for --headless; in window mode use --screenshot");
     if (!screenshot.empty() && frames == 0) throw error("--screenshot needs --frames N");
-    if (headless && frames == 0) frames = 8;
+    // Headless: the samples per pixel in all, in frames of spf (the last one may be smaller).
+    int total_spp = frames * spf;
+    if (headless && !frames_opt) {
+      total_spp = spp_opt.value_or(from_file ? sc.settings.spp : 8 * spf);
+      if (total_spp < 1) throw error("--spp must be positive, got " + std::to_string(total_spp));
+      frames = (total_spp + spf - 1) / spf;
+    }
+    if (headless && frames == 0) throw error("--frames must be positive with --headless");
+    path_options po;
+    po.method = parse_integrator(method);
+    po.max_depth = depth;
+    po.rr_depth = rr_depth;
 
     // The window first: without a display there is nothing to build the kernel for.
     std::optional<gl::glfw_session> glfw;
@@ -180,8 +208,7 @@ int main(int argc, char** argv) {
     }
 
     // [listing setup]
-    scene sc = scene_name.ends_with(".yaml") ? load_scene_file(scene_name).sc : realtime_scene(scene_name);
-    gpu_scene packed = pack_scene(sc, width, height, depth, !no_nee);
+    gpu_scene packed = pack_scene(sc, width, height, po);  // or an error naming what it cannot render
     packed.features.weak_seed = weak_seed;
     if (!headless) packed.features.thin_lens = true;  // the viewer can open the aperture
     std::optional<cl::context> ctx;
@@ -196,31 +223,31 @@ int main(int argc, char** argv) {
                 ctx->device.platform_name.c_str(), ctx->device.c_version.c_str(),
                 ctx->device.compute_units);
     std::printf("scene %s: %s\n", scene_name.c_str(), describe_built(sc).c_str());
-    for (const auto& note : packed.notes) std::printf("note: %s\n", note.c_str());
+    std::printf("%s\n", packed.light_summary.c_str());
     std::printf("kernel options: %s\n", renderer.options().c_str());
     std::printf("kernel build: %.2f s (PoCL caches binaries; POCL_KERNEL_CACHE=0 while editing kernels)\n",
                 renderer.build_seconds());
-    std::printf("image %dx%d, %d spp per frame, depth %d, next-event estimation %s, seed %llu%s\n",
-                width, height, spf, depth, no_nee ? "off" : "on", static_cast<unsigned long long>(seed),
-                weak_seed ? ", weak per-pixel seed (errata C7)" : "");
+    std::printf("image %dx%d, %d spp per frame, depth %d, integrator %s, Russian roulette from bounce %d, "
+                "seed %llu%s\n", width, height, spf, depth, name(po.method), rr_depth,
+                static_cast<unsigned long long>(seed), weak_seed ? ", weak per-pixel seed (errata C7)" : "");
 
     if (headless) {
       // [listing headless]
       stopwatch run;
-      for (int f = 0; f < frames; ++f) renderer.launch(std::uint32_t(spf));
+      for (int f = 0; f < frames; ++f) renderer.launch(std::uint32_t(std::min(spf, total_spp - f * spf)));
       const image img = renderer.read_image();  // waits for the queue
       const double secs = run.seconds();
       // [end]
       write_image(img, out.empty() ? "realtime.png" : out);
       const rgb m = mean_colour(img);
-      const double paths = double(width) * height * spf * frames;
+      const double paths = double(width) * height * total_spp;
       std::printf("frames: %d, %u spp, %.1f ms per frame, %.2f M paths/s\n", frames,
                   renderer.samples(), 1e3 * secs / frames, paths / secs * 1e-6);
       std::printf("mean colour: %.4f %.4f %.4f\n", double(m.x), double(m.y), double(m.z));
       std::printf("wrote %s\n", out.empty() ? "realtime.png" : out.c_str());
-      std::printf("summary: %d frames of %dx%d at %d spp each on %s in %.2f s (%.1f ms per frame); "
-                  "%.2f s in total\n", frames, width, height, spf, ctx->device.device_name.c_str(),
-                  secs, 1e3 * secs / frames, clock.seconds());
+      std::printf("summary: %d frames of %dx%d at %d spp each (%d spp, %s) on %s in %.2f s (%.1f ms per "
+                  "frame); %.2f s in total\n", frames, width, height, spf, total_spp, name(po.method),
+                  ctx->device.device_name.c_str(), secs, 1e3 * secs / frames, clock.seconds());
       return 0;
     }
 

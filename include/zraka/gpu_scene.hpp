@@ -14,12 +14,15 @@
 // Triangles (meshes and lone triangles) go into one triangle BVH (triangle_bvh.hpp), whose
 // 4-wide nodes are copied as they are: they were laid out as flat arrays for SIMD already.
 // Spheres, quads and planes are tested one by one (the course's scenes have a few dozen).
-// What the kernel does differently is listed in gpu_scene::notes: a phong material (the Whitted
-// tracer's) becomes lambertian with its kd; point lights are ignored, as by path.hpp; mesh
-// vertex normals too (the kernel shades triangles flat).
+// The lights are lights.hpp's light_set_t, packed as it is: one record per light (its kind,
+// object, material, selection CDF and probability, area), the triangles of triangle and mesh
+// lights with their area CDF in a side table, and in every sphere, quad and triangle the index
+// of its light (or -1), which a BSDF-sampled ray that hits a light needs for MIS.
+// What the kernel cannot run is refused here, by name, before anything is built: a user shape
+// (C++ intersection code) and a custom BSDF (C++ scattering code).
 //
-// features() says what a scene uses and build_options() turns that into -D switches, so the
-// kernel compiled for a scene of diffuse spheres has no triangle, BVH or glass code at all.
+// The features a scene uses become -D switches (build_options()), so the kernel compiled for a
+// scene of diffuse spheres has no triangle, BVH, glass or Phong code at all.
 #include <zraka/error.hpp>
 #include <zraka/lights.hpp>
 #include <zraka/path.hpp>
@@ -28,6 +31,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -38,14 +42,15 @@ namespace zraka {
 struct alignas(16) gpu_float4 {
   float x = 0, y = 0, z = 0, w = 0;
 };
+// light: the object's index in the light table, or -1 (not a sampled light)
 struct gpu_sphere {
   gpu_float4 center_radius;  // w: radius
-  std::int32_t material, pad[3];
+  std::int32_t material, light, pad[2];
 };
 struct gpu_quad {
   gpu_float4 corner, u, v;
   gpu_float4 normal_area;  // unit normal of u x v; w: area
-  std::int32_t material, pad[3];
+  std::int32_t material, light, pad[2];
 };
 struct gpu_plane {
   gpu_float4 point, normal;  // unit normal
@@ -54,21 +59,32 @@ struct gpu_plane {
 struct gpu_triangle {        // packed_triangle (the watertight test's data), in the BVH's leaf order
   gpu_float4 a, b, c;        // the vertices
   std::uint32_t id;          // index in the input, the tie-breaker of triangle_bvh
-  std::int32_t material, pad[2];
+  std::int32_t material, light, pad;
 };
 struct gpu_node4 {           // triangle_bvh_node4, byte for byte
   float box[6][4];
   std::uint32_t child[4], count[4];
 };
-enum gpu_material_kind : std::int32_t { gpu_lambertian = 0, gpu_metal = 1, gpu_dielectric = 2, gpu_emitter = 3 };
+enum gpu_material_kind : std::int32_t {
+  gpu_lambertian = 0, gpu_metal = 1, gpu_dielectric = 2, gpu_emitter = 3, gpu_phong = 4
+};
 struct gpu_material {
-  gpu_float4 albedo_a, albedo_b;  // solid: a; checker: a and b
+  gpu_float4 albedo_a, albedo_b;  // solid: a; checker: a and b; phong: kd and ks
   gpu_float4 radiance;            // emitted from the front face (both faces if two_sided)
   std::int32_t kind, checker, two_sided, pad;
-  float fuzz, ior, cell, pad2;
+  float fuzz, ior, cell, shininess;
 };
-struct gpu_light {           // an emitting sphere (kind 0) or quad (kind 1)
-  std::int32_t kind, index;
+enum gpu_light_kind : std::int32_t {
+  gpu_light_sphere = 0, gpu_light_quad = 1, gpu_light_triangles = 2, gpu_light_point = 3
+};
+struct gpu_light {                  // one light of light_set_t, in its order
+  gpu_float4 position, intensity;   // point lights
+  std::int32_t kind, object, material, first;  // object: sphere or quad; first: in light_triangles
+  std::uint32_t count;              // triangle lights: 1; meshes: their triangles
+  float cdf, pdf, area;             // selection CDF up to this light, its probability, area
+};
+struct gpu_light_triangle {         // a triangle of a triangle or mesh light
+  gpu_float4 a, b, c;               // a.w, b.w: the light's area CDF before and after it
 };
 struct gpu_camera {          // camera_t::prepared in float
   gpu_float4 origin, u, v, corner, horizontal, vertical;
@@ -77,26 +93,29 @@ struct gpu_camera {          // camera_t::prepared in float
 // [end]
 
 static_assert(sizeof(gpu_float4) == 16 && alignof(gpu_float4) == 16);
-static_assert(sizeof(gpu_sphere) == 32 && offsetof(gpu_sphere, material) == 16);
+static_assert(sizeof(gpu_sphere) == 32 && offsetof(gpu_sphere, material) == 16 && offsetof(gpu_sphere, light) == 20);
 static_assert(sizeof(gpu_quad) == 80 && offsetof(gpu_quad, normal_area) == 48 &&
               offsetof(gpu_quad, material) == 64);
 static_assert(sizeof(gpu_plane) == 48 && offsetof(gpu_plane, material) == 32);
 static_assert(sizeof(gpu_triangle) == 64 && offsetof(gpu_triangle, id) == 48 &&
-              offsetof(gpu_triangle, material) == 52);
+              offsetof(gpu_triangle, material) == 52 && offsetof(gpu_triangle, light) == 56);
 static_assert(sizeof(gpu_node4) == sizeof(triangle_bvh_node4) && sizeof(gpu_node4) == 128 &&
               offsetof(gpu_node4, child) == 96 && offsetof(gpu_node4, count) == 112);
 static_assert(sizeof(gpu_material) == 80 && offsetof(gpu_material, radiance) == 32 &&
-              offsetof(gpu_material, kind) == 48 && offsetof(gpu_material, fuzz) == 64);
-static_assert(sizeof(gpu_light) == 8);
+              offsetof(gpu_material, kind) == 48 && offsetof(gpu_material, fuzz) == 64 &&
+              offsetof(gpu_material, shininess) == 76);
+static_assert(sizeof(gpu_light) == 64 && offsetof(gpu_light, kind) == 32 && offsetof(gpu_light, cdf) == 52);
+static_assert(sizeof(gpu_light_triangle) == 48);
 static_assert(sizeof(gpu_camera) == 112 && offsetof(gpu_camera, lens_radius) == 96);
 
 // What a scene uses: each flag is one -D switch of the kernel.
 struct gpu_features {
   bool spheres = false, quads = false, planes = false, triangles = false;
-  bool metal = false, dielectric = false, checker = false, emitters = false;
+  bool metal = false, dielectric = false, phong = false, checker = false, emitters = false;
+  bool sphere_lights = false, quad_lights = false, triangle_lights = false, point_lights = false;
   bool thin_lens = false;
-  bool next_event = true;  // path.hpp's default
-  int max_depth = 8;
+  integrator method = integrator::mis;  // path.hpp's default
+  int max_depth = 8, rr_depth = 3;
   bool weak_seed = false;  // the thesis's per-pixel seed, for the book's before/after figure
 };
 
@@ -107,11 +126,12 @@ struct gpu_scene {
   std::vector<gpu_triangle> triangles;
   std::vector<gpu_node4> nodes;
   std::vector<gpu_material> materials;
-  std::vector<gpu_light> lights;
+  std::vector<gpu_light> lights;                    // light_set_t's lights, in its order
+  std::vector<gpu_light_triangle> light_triangles;  // of the triangle and mesh lights
   gpu_camera camera;
   gpu_float4 background;
   gpu_features features;
-  std::vector<std::string> notes;  // what the kernel does differently for this scene
+  std::string light_summary;  // light_set_t::describe(): what is sampled, what is hit only
 };
 
 template <class T> gpu_float4 to_gpu(const vec3_t<T>& v, double w = 0) {
@@ -132,6 +152,9 @@ template <class P> gpu_camera camera_to_gpu(const P& c) {
   g.pad[0] = g.pad[1] = g.pad[2] = 0;
   return g;
 }
+inline bool finite(const gpu_float4& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
 }  // namespace detail
 inline gpu_camera to_gpu(const camera_t<double>::prepared& c) { return detail::camera_to_gpu(c); }
 inline gpu_camera to_gpu(const camera_t<float>::prepared& c) { return detail::camera_to_gpu(c); }
@@ -143,12 +166,13 @@ inline gpu_material to_gpu(const material& m) {
     case material_kind::fuzzy_metal: g.kind = gpu_metal; break;
     case material_kind::dielectric: g.kind = gpu_dielectric; break;
     case material_kind::emitter: g.kind = gpu_emitter; break;
-    case material_kind::phong:  // pack_scene() notes it: the Whitted tracer's material
-      g.kind = gpu_lambertian;
-      g.albedo_a = g.albedo_b = to_gpu(m.kd);
-      break;
+    case material_kind::phong: g.kind = gpu_phong; break;
   }
-  if (m.kind != material_kind::phong) {
+  if (m.kind == material_kind::phong) {  // brdf_at(): Lambert kd/pi plus the normalised lobe ks
+    g.albedo_a = to_gpu(m.kd);
+    g.albedo_b = to_gpu(m.ks);
+    g.shininess = float(m.shininess);
+  } else {
     g.albedo_a = to_gpu(m.albedo.a);
     g.albedo_b = to_gpu(m.albedo.b);
     g.checker = m.albedo.type == texture::kind::checker ? 1 : 0;
@@ -162,9 +186,11 @@ inline gpu_material to_gpu(const material& m) {
 }
 
 // [listing gpu-pack]
-// The scene as arrays, the camera prepared for a width x height image, and the features used.
+// The scene as arrays, the camera prepared for a width x height image, the lights of
+// path.hpp's tracer for these options, and the features used. Throws for what the kernel
+// cannot render, naming it, and for the options path.hpp refuses (naive with point lights).
 template <class T>
-gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, int max_depth, bool next_event = true) {
+gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_options& opt) {
   if (width < 1 || height < 1) throw error("image size must be positive");
   gpu_scene g;
   auto& f = g.features;
@@ -178,46 +204,53 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, int max_depth,
       throw error("realtime: material " + std::to_string(sc.material_index(o)) + " is a custom BSDF ('" +
                   m.bsdf->name() + "'), which the OpenCL kernel cannot run; render it with pathtrace");
   });
-  for (const material& m : sc.materials) {
-    g.materials.push_back(to_gpu(m));
-    if (m.kind == material_kind::phong)
-      g.notes.push_back("material " + std::to_string(g.materials.size() - 1) +
-                        " is phong: the kernel renders it as lambertian with its kd");
-  }
+  const path_tracer_t<T> tracer(sc, opt);  // the CPU's own checks, and its lights
+  const light_set_t<T>& lights = tracer.lights;
+  g.light_summary = lights.describe();
+  for (const material& m : sc.materials) g.materials.push_back(to_gpu(m));
   auto note_material = [&](int mi) {
     const material& m = sc.materials[std::size_t(mi)];
     f.metal |= m.kind == material_kind::fuzzy_metal;
     f.dielectric |= m.kind == material_kind::dielectric;
-    f.checker |= m.albedo.type == texture::kind::checker && m.kind != material_kind::dielectric &&
-                 m.kind != material_kind::emitter;
+    f.phong |= m.kind == material_kind::phong;
+    f.checker |= m.albedo.type == texture::kind::checker &&
+                 (m.kind == material_kind::lambertian || m.kind == material_kind::fuzzy_metal);
     f.emitters |= emits(m);
   };
-  for (const auto& s : sc.spheres) {
-    g.spheres.push_back({to_gpu(s.shape.center, s.shape.radius), s.material, {0, 0, 0}});
+  auto light_of = [&](shape_kind k, std::size_t i) { return std::int32_t(lights.index_of({k, int(i)})); };
+  for (std::size_t i = 0; i < sc.spheres.size(); ++i) {
+    const auto& s = sc.spheres[i];
+    g.spheres.push_back({to_gpu(s.shape.center, s.shape.radius), s.material, light_of(shape_kind::sphere, i), {0, 0}});
     note_material(s.material);
   }
-  for (const auto& q : sc.quads) {
+  for (std::size_t i = 0; i < sc.quads.size(); ++i) {
+    const auto& q = sc.quads[i];
     g.quads.push_back({to_gpu(q.shape.corner), to_gpu(q.shape.u), to_gpu(q.shape.v),
-                       to_gpu(q.shape.normal(), q.shape.area()), q.material, {0, 0, 0}});
+                       to_gpu(q.shape.normal(), q.shape.area()), q.material, light_of(shape_kind::quad, i), {0, 0}});
     note_material(q.material);
   }
   for (const auto& p : sc.planes) {
     g.planes.push_back({to_gpu(p.shape.point), to_gpu(p.shape.normal), p.material, {0, 0, 0}});
     note_material(p.material);
   }
-  // Every triangle, lone or in a mesh, goes into one BVH; tri_material maps input index -> material.
+  // Every triangle, lone or in a mesh, goes into one BVH; tri_material and tri_light map the
+  // input index to the material and the light (the mesh's, for its triangles).
   std::vector<triangle_t<float>> tris;
-  std::vector<std::int32_t> tri_material;
-  for (const auto& t : sc.triangles) {
+  std::vector<std::int32_t> tri_material, tri_light;
+  for (std::size_t i = 0; i < sc.triangles.size(); ++i) {
+    const auto& t = sc.triangles[i];
     tris.push_back({vec3_t<float>(t.shape.a), vec3_t<float>(t.shape.b), vec3_t<float>(t.shape.c)});
     tri_material.push_back(t.material);
+    tri_light.push_back(light_of(shape_kind::triangle, i));
     note_material(t.material);
   }
-  for (const auto& mo : sc.meshes) {
+  for (std::size_t m = 0; m < sc.meshes.size(); ++m) {
+    const auto& mo = sc.meshes[m];
     for (std::size_t i = 0; i < mo.shape.triangle_count(); ++i) {
       const auto t = mo.shape.triangle(i);
       tris.push_back({vec3_t<float>(t.a), vec3_t<float>(t.b), vec3_t<float>(t.c)});
       tri_material.push_back(mo.material);
+      tri_light.push_back(light_of(shape_kind::mesh, m));
     }
     note_material(mo.material);
   }
@@ -225,7 +258,7 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, int max_depth,
     const triangle_bvh bvh(tris);
     for (const packed_triangle& p : bvh.triangles())
       g.triangles.push_back({to_gpu(p.a), to_gpu(p.b), to_gpu(p.c), p.id,
-                             tri_material[p.id], {0, 0}});
+                             tri_material[p.id], tri_light[p.id], 0});
     for (const triangle_bvh_node4& n : bvh.nodes()) {
       gpu_node4 o;
       static_assert(sizeof o == sizeof n);
@@ -233,21 +266,72 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, int max_depth,
       g.nodes.push_back(o);
     }
   }
-  const light_set_t<T> light_list(sc, light_selection::uniform);
-  for (const auto& l : light_list.lights())
-    if (l.point < 0 && (l.object.kind == shape_kind::sphere || l.object.kind == shape_kind::quad))
-      g.lights.push_back({l.object.kind == shape_kind::sphere ? 0 : 1, l.object.index});
-  if (!sc.point_lights.empty())
-    g.notes.push_back(std::to_string(sc.point_lights.size()) +
-                      " point light(s) ignored, as path.hpp does (they have no area to hit)");
-  for (const auto& mo : sc.meshes)
-    if (!mo.shape.normals.empty()) {
-      g.notes.push_back("mesh vertex normals ignored: the kernel shades triangles flat");
-      break;
+  // The light table: light_set_t's lights, selection probabilities and mesh area CDFs as they are.
+  double cdf = 0;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const auto& l = lights.lights()[i];
+    gpu_light o{};
+    const double p = double(lights.selection_pdf(int(i)));
+    o.cdf = float(cdf += p);
+    o.pdf = float(p);
+    o.area = float(l.area);
+    if (l.point >= 0) {
+      const auto& pl = sc.point_lights[std::size_t(l.point)];
+      o.kind = gpu_light_point;
+      o.object = l.point;
+      o.position = to_gpu(pl.position);
+      o.intensity = to_gpu(pl.intensity);
+      f.point_lights = true;
+      g.lights.push_back(o);
+      continue;
     }
-  if (g.lights.empty() && !f.emitters && sc.background == rgb(0))
-    g.notes.push_back("no area light, no glowing surface and a black background: the image is "
-                      "black (point lights need the Whitted tracer)");
+    o.object = l.object.index;
+    o.material = sc.material_index(l.object);
+    const auto k = std::size_t(l.object.index);
+    switch (l.object.kind) {
+      case shape_kind::sphere: o.kind = gpu_light_sphere; f.sphere_lights = true; break;
+      case shape_kind::quad: o.kind = gpu_light_quad; f.quad_lights = true; break;
+      case shape_kind::triangle: {
+        const auto& t = sc.triangles[k].shape;
+        o.kind = gpu_light_triangles;
+        o.first = std::int32_t(g.light_triangles.size());
+        o.count = 1;
+        g.light_triangles.push_back({to_gpu(t.a, 0.0), to_gpu(t.b, double(l.area)), to_gpu(t.c)});
+        f.triangle_lights = true;
+        break;
+      }
+      case shape_kind::mesh: {
+        const auto& mesh = sc.meshes[k].shape;
+        const std::vector<double>& c = lights.triangle_cdf();
+        o.kind = gpu_light_triangles;
+        o.first = std::int32_t(g.light_triangles.size());
+        o.count = l.count;
+        for (std::uint32_t j = 0; j < l.count; ++j) {
+          const auto t = mesh.triangle(j);
+          g.light_triangles.push_back({to_gpu(t.a, c[l.first + j]), to_gpu(t.b, c[l.first + j + 1]), to_gpu(t.c)});
+        }
+        f.triangle_lights = true;
+        break;
+      }
+      case shape_kind::plane:
+      case shape_kind::user: throw error("realtime: internal: a plane or user shape in the light table");
+    }
+    g.lights.push_back(o);
+  }
+  // Float is the kernel's precision: a number beyond its range is refused, not rendered as inf.
+  auto need_finite = [](const gpu_float4& v, const std::string& what) {
+    if (!detail::finite(v)) throw error("realtime: " + what + " does not fit in float, the kernel's precision");
+  };
+  for (std::size_t i = 0; i < g.spheres.size(); ++i) need_finite(g.spheres[i].center_radius, "sphere " + std::to_string(i));
+  for (std::size_t i = 0; i < g.quads.size(); ++i)
+    for (const auto& v : {g.quads[i].corner, g.quads[i].u, g.quads[i].v, g.quads[i].normal_area})
+      need_finite(v, "quad " + std::to_string(i));
+  for (std::size_t i = 0; i < g.planes.size(); ++i) need_finite(g.planes[i].point, "plane " + std::to_string(i));
+  for (const auto& t : g.triangles)
+    for (const auto& v : {t.a, t.e1, t.e2}) need_finite(v, "triangle " + std::to_string(t.id));
+  for (std::size_t i = 0; i < g.materials.size(); ++i)
+    need_finite(g.materials[i].radiance, "the radiance of material " + std::to_string(i));
+  for (const auto& l : g.lights) need_finite(l.intensity, "a point light's intensity");
 
   camera_t<T> c = sc.camera;
   c.aspect = T(width) / T(height);
@@ -258,8 +342,9 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, int max_depth,
   f.planes = !g.planes.empty();
   f.triangles = !g.nodes.empty();
   f.thin_lens = sc.camera.aperture > 0;
-  f.next_event = next_event;
-  f.max_depth = max_depth;
+  f.method = opt.method;
+  f.max_depth = opt.max_depth;
+  f.rr_depth = opt.rr_depth;
   return g;
 }
 // [end]
@@ -278,19 +363,25 @@ inline std::string build_options(const gpu_features& f, bool all_features = fals
   flag(f.triangles, "HAS_TRIANGLES");  // the triangle BVH comes with them
   flag(f.metal, "HAS_METAL");
   flag(f.dielectric, "HAS_DIELECTRIC");
+  flag(f.phong, "HAS_PHONG");
   flag(f.checker, "HAS_CHECKER");
   flag(f.emitters, "HAS_EMITTERS");
+  flag(f.sphere_lights, "HAS_SPHERE_LIGHTS");
+  flag(f.quad_lights, "HAS_QUAD_LIGHTS");
+  flag(f.triangle_lights, "HAS_TRIANGLE_LIGHTS");
+  flag(f.point_lights, "HAS_POINT_LIGHTS");
   flag(f.thin_lens, "HAS_THIN_LENS");
-  if (f.next_event) o += " -DNEE";  // an algorithm choice, not a feature: never forced on
+  // The algorithm is a choice, not a feature: never forced.
+  o += f.method == integrator::naive ? " -DMETHOD_NAIVE" : f.method == integrator::nee ? " -DMETHOD_NEE" : " -DMETHOD_MIS";
   if (f.weak_seed) o += " -DWEAK_SEED";
-  o += " -DMAX_DEPTH=" + std::to_string(f.max_depth);
+  o += " -DMAX_DEPTH=" + std::to_string(f.max_depth) + " -DRR_DEPTH=" + std::to_string(f.rr_depth);
   return o;
 }
 // [end]
 
 // [listing reference-sample]
 // The CPU twin of one kernel sample: the same pixel jitter and lens draws from the same stream
-// rng(seed, pixel, sample), then path.hpp's path tracer in double (NEE as its default).
+// rng(seed, pixel, sample), then path.hpp's path tracer in double.
 template <class T>
 rgb reference_sample(const scene_t<T>& sc, const light_set_t<T>& lights,
                      const typename camera_t<T>::prepared& cam, int x, int y, int width, int height, rng& g,

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -67,6 +68,8 @@ template <class T> class light_set_t {
       light l;
       l.point = int(i);
       l.power = 4.0 * pi<double> * mean(sc.point_lights[i].intensity);
+      if (!std::isfinite(l.power) || !is_finite(sc.point_lights[i].intensity))
+        throw error("lights: point light " + std::to_string(i) + " has a non-finite intensity");
       if (l.power > 0) lights_.push_back(l);
     }
     double total = 0;
@@ -81,6 +84,9 @@ template <class T> class light_set_t {
   light_selection selection() const { return selection_; }
   // Emitters that are counted only when a ray hits them (see the top of this file).
   const std::vector<std::string>& hit_only() const { return hit_only_; }
+  // Meshes: their triangles' areas, summed, count + 1 entries from light.first (the GPU kernel
+  // packs them as they are: gpu_scene.hpp).
+  const std::vector<double>& triangle_cdf() const { return triangle_cdf_; }
 
   // The probability of choosing light i.
   T selection_pdf(int i) const { return T(weight(lights_[std::size_t(i)]) / total_); }
@@ -247,6 +253,9 @@ template <class T> class light_set_t {
     }
     if (!(l.area > T(0)) || !std::isfinite(l.area)) return;  // degenerate: never hit either
     l.power = mean(m.radiance) * double(l.area) * pi<double> * (m.two_sided ? 2.0 : 1.0);
+    if (!std::isfinite(l.power) || !is_finite(m.radiance) || m.radiance.x < 0 || m.radiance.y < 0 || m.radiance.z < 0)
+      throw error("lights: material " + std::to_string(sc_.material_index(o)) +
+                  " glows with a negative or non-finite radiance, or on a shape of infinite area");
     index_[kind(o.kind)][std::size_t(o.index)] = int(lights_.size());
     lights_.push_back(l);
   }

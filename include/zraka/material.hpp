@@ -194,7 +194,9 @@ std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const
   }
   switch (m.kind) {
     case material_kind::fuzzy_metal: {  // mirror direction + fuzz * point in the unit ball
-      const vec3_t<T> ball = sample_unit_ball(vec3_t<T>(g.uniform(), g.uniform(), g.uniform()));
+      // One full-expression per draw: a constructor's arguments are evaluated in no fixed order.
+      const T u0 = T(g.uniform()), u1 = T(g.uniform()), u2 = T(g.uniform());
+      const vec3_t<T> ball = sample_unit_ball(vec3_t<T>(u0, u1, u2));
       const auto wi = fuzzy_mirror(d, n, T(m.fuzz), ball);
       if (!wi) return std::nullopt;  // pushed below the surface: absorbed
       return scatter_t<T>{*wi, evaluate(m.albedo, h.p, n), T(0), true};

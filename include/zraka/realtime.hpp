@@ -19,6 +19,7 @@
 #include <zraka/scene.hpp>
 #include <zraka/stopwatch.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -57,9 +58,11 @@ class gpu_renderer {
     nodes_ = upload(s.nodes);
     materials_ = upload(s.materials);
     lights_ = upload(s.lights);
+    light_tris_ = upload(s.light_triangles);
     camera_ = c.make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_camera), &s.camera);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     accum_ = c.make_buffer(CL_MEM_READ_WRITE, pixels * 16);
+    accum_sq_ = c.make_buffer(CL_MEM_READ_WRITE, pixels * 16);
     display_ = c.make_buffer(CL_MEM_WRITE_ONLY, pixels * 4);
   }
 
@@ -74,8 +77,8 @@ class gpu_renderer {
   void launch(std::uint32_t n) {
     const gpu_scene& s = scene_;
     const cl_float4 bg = {{s.background.x, s.background.y, s.background.z, 0.0f}};
-    cl::set_args(kernel_, spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, camera_,
-                 accum_, display_, cl_int(s.spheres.size()), cl_int(s.quads.size()),
+    cl::set_args(kernel_, spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, light_tris_,
+                 camera_, accum_, accum_sq_, display_, cl_int(s.spheres.size()), cl_int(s.quads.size()),
                  cl_int(s.planes.size()), cl_int(s.lights.size()), cl_int(s.nodes.size()),
                  cl_uint(width_), cl_uint(height_), cl_uint(samples_), cl_uint(n),
                  cl_ulong(seed_), bg);
@@ -130,6 +133,28 @@ class gpu_renderer {
     return img;
   }
 
+  // Each pixel's sample variance (unbiased, per channel) from the sums of the samples and of
+  // their squares, top row first: the standard error of a pixel is sqrt(variance / samples()).
+  image read_variance() const {
+    const std::size_t n = std::size_t(width_) * std::size_t(height_) * 4;
+    std::vector<float> sums(n), squares(n);
+    ctx_.read(accum_, n * sizeof(float), sums.data());
+    ctx_.read(accum_sq_, n * sizeof(float), squares.data());
+    image img(width_, height_);
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x) {
+        const std::size_t i = 4 * (std::size_t(y) * std::size_t(width_) + std::size_t(x));
+        const double k = sums[i + 3];
+        rgb v(0);
+        for (int c = 0; c < 3 && k > 1; ++c) {
+          const double mean = sums[i + std::size_t(c)] / k;
+          v[c] = float(std::max(0.0, (squares[i + std::size_t(c)] - k * mean * mean) / (k - 1)));
+        }
+        img.at(x, y) = v;
+      }
+    return img;
+  }
+
  private:
   // An empty array still needs a buffer to pass (OpenCL has no zero-size buffers): one zeroed
   // element, which the kernel never reads because its count is 0.
@@ -149,7 +174,8 @@ class gpu_renderer {
   double build_seconds_ = 0;
   cl::program_handle program_;
   cl::kernel_handle kernel_;
-  cl::buffer spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, camera_, accum_, display_;
+  cl::buffer spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, light_tris_, camera_, accum_,
+      accum_sq_, display_;
   std::uint32_t samples_ = 0;
   using event_handle = cl::handle<cl_event, clReleaseEvent>;
   event_handle pending_;

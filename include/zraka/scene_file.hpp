@@ -16,6 +16,8 @@
 // Sizes are bounded by limits() (limits.hpp): YAML nodes after alias expansion, the triangles
 // of the whole scene (checked before a mesh is tessellated), pixels and samples, file sizes; and
 // every coordinate, also after its transform, lies within max_coordinate.
+// Types a program adds (a user shape, a custom BSDF) are read by name through a scene_registry
+// (scene_registry.hpp) passed to parse_scene / load_scene_file, with the same checks (scene_node).
 // Needs yaml-cpp (link yaml-cpp).
 #include <zraka/affine.hpp>
 #include <zraka/bpt.hpp>
@@ -26,11 +28,13 @@
 #include <zraka/obj_file.hpp>
 #include <zraka/resources.hpp>
 #include <zraka/scene.hpp>
+#include <zraka/scene_registry.hpp>
 #include <zraka/tessellate.hpp>
 
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -65,9 +69,55 @@ namespace detail {
 // The OBJ reader moved to obj_file.hpp (issue 12); the old name stays for callers.
 using zraka::load_obj;
 
+class scene_reader;
+
+}  // namespace detail
+
+// [listing scene-node]
+// What a registered type's factory (scene_registry.hpp) reads its entry with: the readers of the
+// built-in types, by key. Each checks what a built-in field is checked for (a finite number, a
+// point [x, y, z], a colour not negative, a unit direction that is not zero) and throws
+// "FILE:LINE:COLUMN: objects[2].radius: ..." when it is wrong; the variants without a fallback
+// make the field required. What is read, fallbacks included, goes into the resolved scene.
+class scene_node {
+ public:
+  const std::string& type() const { return type_; }
+  bool has(const std::string& key) const { return bool(get(key)); }
+  double number(const std::string& key) const;
+  double number(const std::string& key, double fallback) const;
+  long long integer(const std::string& key, long long lo, long long hi, long long fallback) const;
+  vec3 point(const std::string& key) const;
+  vec3 point(const std::string& key, const vec3& fallback) const;
+  vec3 direction(const std::string& key) const;  // normalised; zero is an error
+  vec3 direction(const std::string& key, const vec3& fallback) const;
+  rgb colour(const std::string& key) const;
+  rgb colour(const std::string& key, const rgb& fallback) const;
+  std::string text(const std::string& key, const std::string& fallback) const;
+  // An error at the field (or at the entry, if the field is absent): "must be positive".
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+  std::string field(const std::string& key) const { return path_ + "." + key; }
+  // [end]
+
+ private:
+  friend class detail::scene_reader;  // the only one that makes them
+  scene_node(const detail::scene_reader& r, YAML::Node n, std::string path, std::string type,
+             const std::vector<std::string>& keys, YAML::Node resolved)
+      : r_(r), n_(std::move(n)), path_(std::move(path)), type_(std::move(type)), keys_(keys), resolved_(resolved) {}
+  const detail::scene_reader& r_;
+  YAML::Node n_;
+  std::string path_, type_;
+  const std::vector<std::string>& keys_;
+  mutable YAML::Node resolved_;  // a handle: writes go to the resolved entry
+  YAML::Node get(const std::string& key) const;
+  YAML::Node need(const std::string& key) const;
+};
+
+namespace detail {
+
 class scene_reader {
  public:
-  scene_reader(std::string name, std::filesystem::path dir) : name_(std::move(name)), dir_(std::move(dir)) {}
+  scene_reader(std::string name, std::filesystem::path dir, const scene_registry& reg = {})
+      : name_(std::move(name)), dir_(std::move(dir)), registry_(reg) {}
 
   loaded_scene read(const std::string& text) {
     YAML::Node loaded;
@@ -98,8 +148,11 @@ class scene_reader {
   }
 
  private:
+  friend class zraka::scene_node;
   std::string name_;
   std::filesystem::path dir_;
+  scene_registry registry_;  // a copy: a temporary registry may be passed
+  std::map<int, YAML::Node> registered_resolved_;  // material index -> its resolved entry
   loaded_scene out_;
   YAML::Node resolved_;
   std::map<std::string, int> material_index_;
@@ -341,12 +394,17 @@ class scene_reader {
         const int index = material_index_.count(name) ? material_index_[name] : out_.sc.add_material(material{});
         if (!material_index_.count(name)) out_.material_names.push_back(name);
         material_index_[name] = index;
-        out_.sc.materials[std::size_t(index)] = one_material(kv.second, "materials." + name);
+        registered_resolved_.erase(index);
+        out_.sc.materials[std::size_t(index)] = one_material(kv.second, "materials." + name, index);
       }
     }
     for (std::size_t i = 0; i < out_.material_names.size(); ++i) {
       const material& m = out_.sc.materials[i];
       YAML::Node r;
+      if (const auto it = registered_resolved_.find(int(i)); it != registered_resolved_.end()) {
+        resolved_["materials"][out_.material_names[i]] = it->second;
+        continue;
+      }
       switch (m.kind) {
         case material_kind::lambertian:
           r["type"] = "lambertian";
@@ -385,9 +443,10 @@ class scene_reader {
     }
   }
 
-  material one_material(const YAML::Node& n, const std::string& path) {
+  material one_material(const YAML::Node& n, const std::string& path, int index) {
     if (!n.IsMap()) fail(n, path, "expected {type: ..., ...}, got " + scalar_text(n));
     const std::string type = n["type"] ? text(n["type"], path + ".type") : "lambertian";
+    if (const auto* reg = registry_.material_type(type)) return registered_material(n, path, type, *reg, index);
     material m;
     if (type == "lambertian") {
       keys(n, path, {"type", "albedo"});
@@ -421,8 +480,7 @@ class scene_reader {
         if (!(m.shininess > 0)) fail(n["shininess"], path + ".shininess", "must be positive");
       }
     } else {
-      fail(n["type"], path + ".type",
-           "unknown material type '" + type + "' (expected lambertian, metal, dielectric, emitter or phong)");
+      fail(n["type"], path + ".type", "unknown material type '" + type + "' (expected " + registry_.material_types() + ")");
     }
     return m;
   }
@@ -541,9 +599,10 @@ class scene_reader {
         {"quad", {"corner", "u", "v"}},   {"box", {"min", "max"}},        {"mesh", {"file"}},
         {"bezier", {"file", "divs"}}};
     const auto it = own.find(type);
-    if (it == own.end())
-      fail(o["type"], path + ".type",
-           "unknown object type '" + type + "' (expected sphere, plane, triangle, quad, box, mesh or bezier)");
+    if (it == own.end()) {
+      if (const auto* reg = registry_.shape(type)) return registered_object(o, path, type, *reg);
+      fail(o["type"], path + ".type", "unknown object type '" + type + "' (expected " + registry_.object_types() + ")");
+    }
     {
       std::set<std::string> seen;
       std::string list = "type, name, material, transform";
@@ -558,20 +617,8 @@ class scene_reader {
     }
     YAML::Node r;
     r["type"] = type;
-    std::string label = path;
-    if (o["name"]) {
-      r["name"] = text(o["name"], path + ".name");
-      label = path + " (" + o["name"].Scalar() + ")";
-    }
-    std::string mat_name = "default";
-    if (o["material"]) mat_name = text(o["material"], label + ".material");
-    const auto m = material_index_.find(mat_name);
-    if (m == material_index_.end()) {
-      std::string known;
-      for (const auto& kv : material_index_) known += (known.empty() ? "" : ", ") + kv.first;
-      fail(o["material"], label + ".material", "unknown material '" + mat_name + "' (defined: " + known + ")");
-    }
-    const int mat = m->second;
+    std::string label = path, mat_name;
+    const int mat = object_material(o, path, r, label, mat_name);
     vec3 s(1);
     affine a;
     if (o["transform"]) a = transform(o["transform"], label + ".transform", s);
@@ -665,6 +712,83 @@ class scene_reader {
     resolved_["objects"].push_back(r);
   }
 
+  // The object's name (into r and the label used in messages) and its material's index.
+  int object_material(const YAML::Node& o, const std::string& path, YAML::Node& r, std::string& label,
+                      std::string& mat_name) const {
+    if (o["name"]) {
+      r["name"] = text(o["name"], path + ".name");
+      label = path + " (" + o["name"].Scalar() + ")";
+    }
+    mat_name = "default";
+    if (o["material"]) mat_name = text(o["material"], label + ".material");
+    const auto m = material_index_.find(mat_name);
+    if (m == material_index_.end()) {
+      std::string known;
+      for (const auto& kv : material_index_) known += (known.empty() ? "" : ", ") + kv.first;
+      fail(o["material"], label + ".material", "unknown material '" + mat_name + "' (defined: " + known + ")");
+    }
+    return m->second;
+  }
+
+  // ---------------------------------------------------------------- registered types (scene_registry.hpp)
+  // [listing registered-object]
+  // Keys first (the common ones and those the type registered), then the factory reads its
+  // fields through a scene_node. An error the factory throws itself is given the entry's place.
+  void registered_object(const YAML::Node& o, const std::string& path, const std::string& type,
+                         const scene_registry::entry<scene_registry::shape_factory>& reg) {
+    strict_keys(o, path, type, {"type", "name", "material"}, reg.keys);
+    YAML::Node r;
+    r["type"] = type;
+    std::string label = path, mat_name;
+    const int mat = object_material(o, path, r, label, mat_name);
+    user_shape_ptr<double> shape;
+    located(o, label, [&] { shape = reg.make(scene_node(*this, o, label, type, reg.keys, r)); });
+    if (!shape) fail(o, label, "the factory for '" + type + "' made no shape");
+    located(o, label, [&] { out_.sc.add(std::move(shape), mat); });
+    r["material"] = mat_name;
+    r.SetStyle(YAML::EmitterStyle::Flow);
+    resolved_["objects"].push_back(r);
+  }
+  // [end]
+  material registered_material(const YAML::Node& n, const std::string& path, const std::string& type,
+                               const scene_registry::entry<scene_registry::material_factory>& reg, int index) {
+    strict_keys(n, path, type, {"type"}, reg.keys);
+    YAML::Node r;
+    r["type"] = type;
+    material m;
+    located(n, path, [&] { m = reg.make(scene_node(*this, n, path, type, reg.keys, r)); });
+    r.SetStyle(YAML::EmitterStyle::Flow);
+    registered_resolved_[index] = r;
+    return m;
+  }
+  // Every key of n is one of `common` or `own`, once.
+  void strict_keys(const YAML::Node& n, const std::string& path, const std::string& type,
+                   std::initializer_list<const char*> common, const std::vector<std::string>& own) const {
+    std::string list;
+    for (const char* k : common) list += (list.empty() ? "" : ", ") + std::string(k);
+    for (const std::string& k : own) list += ", " + k;
+    std::set<std::string> seen;
+    for (const auto& kv : n) {
+      const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : "?";
+      if (!seen.insert(k).second) fail(kv.first, join(path, k), "duplicate key");
+      bool ok = std::find(own.begin(), own.end(), k) != own.end();
+      for (const char* c : common) ok = ok || k == c;
+      if (!ok) fail(kv.first, join(path, k), "unknown key for a " + type + " (expected one of: " + list + ")");
+    }
+  }
+  // Runs f; a zraka::error without this file's place (thrown by user code) gets the entry's.
+  template <class F> void located(const YAML::Node& n, const std::string& path, F&& f) const {
+    try {
+      f();
+    } catch (const error& e) {
+      const std::string msg = e.what();
+      if (msg.rfind(name_ + ":", 0) == 0) throw;
+      fail(n, path, msg);
+    } catch (const std::exception& e) {
+      fail(n, path, std::string("the factory failed: ") + e.what());
+    }
+  }
+
   // Six quads facing out (u x v along the outward normal).
   static std::vector<quad> box_faces(const vec3& lo, const vec3& hi) {
     const vec3 d = hi - lo;
@@ -684,17 +808,79 @@ class scene_reader {
 
 }  // namespace detail
 
+// ---------------------------------------------------------------- scene_node
+inline YAML::Node scene_node::get(const std::string& key) const {
+  // A factory reading a key it did not register is a bug in the program, not in the scene.
+  if (std::find(keys_.begin(), keys_.end(), key) == keys_.end())
+    throw error("scene registry: the factory for '" + type_ + "' reads key '" + key + "', which it did not register");
+  const YAML::Node& n = n_;  // const: looking up a key must not add it
+  return n[key];
+}
+inline YAML::Node scene_node::need(const std::string& key) const {
+  const YAML::Node v = get(key);
+  if (!v) r_.fail(n_, field(key), "required, but missing");
+  return v;
+}
+inline void scene_node::fail(const std::string& key, const std::string& what) const {
+  const YAML::Node v = get(key);
+  r_.fail(v ? v : n_, field(key), what);
+}
+inline double scene_node::number(const std::string& key) const {
+  const double x = r_.number(need(key), field(key));
+  resolved_[key] = r_.num(x);
+  return x;
+}
+inline double scene_node::number(const std::string& key, double fallback) const {
+  return has(key) ? number(key) : (resolved_[key] = r_.num(fallback), fallback);
+}
+inline long long scene_node::integer(const std::string& key, long long lo, long long hi, long long fallback) const {
+  const long long x = has(key) ? r_.integer(get(key), field(key), lo, hi) : fallback;
+  resolved_[key] = x;
+  return x;
+}
+inline vec3 scene_node::point(const std::string& key) const {
+  const vec3 p = r_.vector3(need(key), field(key));
+  resolved_[key] = r_.flow(p);
+  return p;
+}
+inline vec3 scene_node::point(const std::string& key, const vec3& fallback) const {
+  return has(key) ? point(key) : (resolved_[key] = r_.flow(fallback), fallback);
+}
+inline vec3 scene_node::direction(const std::string& key) const {
+  const vec3 d = r_.vector3(need(key), field(key));
+  const vec3 u = normalize_or_zero(d);
+  if (u == vec3(0) || !is_finite(u)) fail(key, "a direction must not be zero");
+  resolved_[key] = r_.flow(d);
+  return u;
+}
+inline vec3 scene_node::direction(const std::string& key, const vec3& fallback) const {
+  return has(key) ? direction(key) : (resolved_[key] = r_.flow(fallback), normalize_or_zero(fallback));
+}
+inline rgb scene_node::colour(const std::string& key) const {
+  const rgb c = r_.colour(need(key), field(key));
+  resolved_[key] = r_.flow(c);
+  return c;
+}
+inline rgb scene_node::colour(const std::string& key, const rgb& fallback) const {
+  return has(key) ? colour(key) : (resolved_[key] = r_.flow(fallback), fallback);
+}
+inline std::string scene_node::text(const std::string& key, const std::string& fallback) const {
+  const std::string s = has(key) ? r_.text(get(key), field(key)) : fallback;
+  resolved_[key] = s;
+  return s;
+}
+
 // Reads a scene from YAML text; `name` is used in error messages and `dir` to find the files
-// the scene names.
+// the scene names; `types` are the types the program registered (scene_registry.hpp).
 inline loaded_scene parse_scene(const std::string& text, const std::string& name,
-                                const std::filesystem::path& dir = ".") {
-  return detail::scene_reader(name, dir).read(text);
+                                const std::filesystem::path& dir = ".", const scene_registry& types = {}) {
+  return detail::scene_reader(name, dir, types).read(text);
 }
 
 // Reads a scene file: a path as given, or relative to the resource root (resources.hpp).
-inline loaded_scene load_scene_file(const std::filesystem::path& path) {
+inline loaded_scene load_scene_file(const std::filesystem::path& path, const scene_registry& types = {}) {
   const std::filesystem::path p = resource_path(path.string());
-  return parse_scene(read_input_file(p), path.string(), p.parent_path());
+  return parse_scene(read_input_file(p), path.string(), p.parent_path(), types);
 }
 
 }  // namespace zraka

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # install.external: installs zraka from the build folder $1 into a temporary prefix, then
-# configures, builds and runs book/assignments/external (an instructor's own repository) against
+# configures, builds and runs book/assignments/external (an instructor's own repository: a user
+# shape, a custom material, both registered for scene files and rendered from scene.yaml) against
 # it with find_package(zraka), and checks that it wrote its PNG. Modelled on tests/check_install.sh.
 set -euo pipefail
 build=$(cd "$1" && pwd)
