@@ -259,8 +259,8 @@ TEST_CASE("lights: a NaN or infinite glow is an error, not a silent light") {
   material m = material::lambertian(rgb(0.5f));
   m.radiance = rgb(1, std::numeric_limits<float>::quiet_NaN(), 1);
   sc.add(sphere{{0, 0, 0}, 1}, sc.add_material(m));
-  CHECK_THROWS_WITH_AS(light_set(sc), doctest::Contains("non-finite"), error);
+  CHECK_THROWS_WITH_AS(light_set{sc}, doctest::Contains("non-finite"), error);
   scene pl;
   pl.add(point_light_t<double>{{0, 1, 0}, rgb(std::numeric_limits<float>::infinity())});
-  CHECK_THROWS_WITH_AS(light_set(pl), doctest::Contains("point light 0"), error);
+  CHECK_THROWS_WITH_AS(light_set{pl}, doctest::Contains("point light 0"), error);
 }

@@ -236,14 +236,14 @@ objects:
   // Whitted renders a user shape (it goes through scene_query like any shape) ...
   CHECK(error_of([&] { check_whitted_scene(disk_only.sc); }) == "(no error)");
   // ... but the kernel cannot run C++ code.
-  CHECK(error_of([&] { (void)pack_scene(disk_only.sc, 8, 8, 4); }) ==
+  CHECK(error_of([&] { (void)pack_scene(disk_only.sc, 8, 8, path_options{}); }) ==
         "realtime: the scene has a user shape ('disk'), which the OpenCL kernel cannot intersect; render it with "
         "pathtrace");
   const loaded_scene glossy_only = parse("materials: {g: {type: glossy}}\nobjects: [{type: sphere, material: g}]");
   CHECK(error_of([&] { check_whitted_scene(glossy_only.sc); }) ==
         "whitted: material 1 is a custom BSDF ('glossy'), which the Whitted ray tracer cannot shade; render it "
         "with pathtrace");
-  CHECK(error_of([&] { (void)pack_scene(glossy_only.sc, 8, 8, 4); }) ==
+  CHECK(error_of([&] { (void)pack_scene(glossy_only.sc, 8, 8, path_options{}); }) ==
         "realtime: material 1 is a custom BSDF ('glossy'), which the OpenCL kernel cannot run; render it with "
         "pathtrace");
 }

@@ -328,7 +328,7 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
       need_finite(v, "quad " + std::to_string(i));
   for (std::size_t i = 0; i < g.planes.size(); ++i) need_finite(g.planes[i].point, "plane " + std::to_string(i));
   for (const auto& t : g.triangles)
-    for (const auto& v : {t.a, t.e1, t.e2}) need_finite(v, "triangle " + std::to_string(t.id));
+    for (const auto& v : {t.a, t.b, t.c}) need_finite(v, "triangle " + std::to_string(t.id));
   for (std::size_t i = 0; i < g.materials.size(); ++i)
     need_finite(g.materials[i].radiance, "the radiance of material " + std::to_string(i));
   for (const auto& l : g.lights) need_finite(l.intensity, "a point light's intensity");

@@ -39,8 +39,11 @@
 #include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -230,23 +233,72 @@ inline result images_match(const image& got, const image& reference, const image
   return r;
 }
 
+namespace detail {
+// Checks a PNG's chunk structure before stb_image sees it, so that memory stays in proportion to
+// the file: stb_image trusts a chunk's declared length (an 80-byte file asked it for 1.7 GB, found
+// by fuzz/fuzz_png.cpp) and allocates the image its header declares before inflating. Every
+// chunk must lie inside the file, and the declared image must fit what the compressed data can
+// hold (deflate expands at most about 1032:1).
+inline void check_png_structure(const std::string& bytes, const std::string& name) {
+  static const char signature[] = "\x89PNG\r\n\x1a\n";
+  if (bytes.size() < 8 || bytes.compare(0, 8, signature, 8) != 0) throw error("cannot read PNG " + name + ": not a PNG file");
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (int i = 0; i < 4; ++i) v = v << 8 | static_cast<unsigned char>(bytes[at + std::size_t(i)]);
+    return v;
+  };
+  std::size_t at = 8;
+  double idat = 0, raw = -1;
+  for (bool end = false; !end;) {
+    // stb_image reads a chunk header from a partial one too (zeros past the end): none may be cut.
+    if (bytes.size() - at < 12) throw error("cannot read PNG " + name + ": the file ends inside a chunk (truncated)");
+    const std::uint32_t len = u32(at);
+    const std::string type = bytes.substr(at + 4, 4);
+    if (len > bytes.size() - at - 12)
+      throw error("cannot read PNG " + name + ": chunk " + type + " runs past the end of the file");
+    if (type == "IHDR" && len >= 13) {
+      const double w = u32(at + 8), h = u32(at + 12);
+      const int depth = static_cast<unsigned char>(bytes[at + 16]), colour = static_cast<unsigned char>(bytes[at + 17]);
+      const int channels = colour == 2 ? 3 : colour == 4 ? 2 : colour == 6 ? 4 : 1;
+      raw = h * (1 + std::ceil(w * channels * depth / 8.0));
+      try {
+        image::check_size(static_cast<long long>(w), static_cast<long long>(h));
+      } catch (const error& e) {
+        throw error("cannot read PNG " + name + ": " + e.what());
+      }
+    }
+    // An empty IDAT is legal but useless, and stb_image 2.27 then calls memcpy(NULL, ..., 0),
+    // undefined behaviour (UBSan stops there): refuse it.
+    if (type == "IDAT" && len == 0) throw error("cannot read PNG " + name + ": an empty IDAT chunk");
+    if (type == "IDAT") idat += len;
+    at += 12 + std::size_t(len);
+    end = type == "IEND";
+  }
+  if (raw < 0) throw error("cannot read PNG " + name + ": no IHDR chunk");
+  if (raw > 1032 * idat + 1024)
+    throw error("cannot read PNG " + name + ": the image data is too short for the declared size");
+}
+}  // namespace detail
+
 // A PNG as display values in [0,1] (8-bit sRGB / 255).
 // Only a regular file within limits().file_bytes, and the size in its header is checked against
 // the image limits before anything is decoded (a small PNG can claim gigapixels).
 inline image read_png_display(const std::filesystem::path& path) {
   const std::string bytes = read_input_file(path);
+  detail::check_png_structure(bytes, path.string());
   const auto* in = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int len = bytes.size() > std::size_t(std::numeric_limits<int>::max()) ? 0 : int(bytes.size());
+  // stb_image does not give a reason for every failure (fuzz_png found a NULL one)
+  auto why = [] { const char* w = stbi_failure_reason(); return std::string(w ? w : "corrupt PNG"); };
   int w = 0, h = 0, channels = 0;
-  if (!stbi_info_from_memory(in, len, &w, &h, &channels))
-    throw error("cannot read PNG " + path.string() + ": " + stbi_failure_reason());
+  if (!stbi_info_from_memory(in, len, &w, &h, &channels)) throw error("cannot read PNG " + path.string() + ": " + why());
   try {
     image::check_size(w, h);
   } catch (const error& e) {
     throw error(path.string() + ": " + e.what());
   }
   unsigned char* data = stbi_load_from_memory(in, len, &w, &h, &channels, 3);
-  if (!data) throw error("cannot read PNG " + path.string() + ": " + stbi_failure_reason());
+  if (!data) throw error("cannot read PNG " + path.string() + ": " + why());
   image img;
   try {
     img = image(w, h);

@@ -143,7 +143,7 @@ int main(int argc, char** argv) {
     // 6. The realtime kernel cannot run C++ code: it must refuse the scene, naming the shape.
     bool refused = false;
     try {
-      (void)pack_scene(sc, W, H, po.max_depth);
+      (void)pack_scene(sc, W, H, po);
     } catch (const error& e) {
       const std::string msg = e.what();
       refused = msg.find("realtime") != std::string::npos && msg.find("user shape ('disk')") != std::string::npos;

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The test suite built with AddressSanitizer and UndefinedBehaviorSanitizer (-DZRAKA_SANITIZE=ON)
+# in build-sanitize/: unit tests, chapter smoke tests, the course flow, assignments and the replay
+# of fuzz inputs. Any sanitizer report fails its test (UB stops the program: -fno-sanitize-recover).
+# -O1 keeps the build and the runs short; without NDEBUG, so assert() checks too.
+# Usage: bash tools/sanitize.sh [ctest arguments, e.g. -R scene]      (tools/test.sh runs it)
+# Not run here: the book's text checks and the install tests (labels book, install), which test
+# no compiled code of ours. Leaks inside the OpenCL driver are suppressed by tools/lsan.supp.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 -DZRAKA_WERROR=ON \
+      -DZRAKA_SANITIZE=ON >/dev/null
+cmake --build build-sanitize -j "$(nproc)"
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:detect_stack_use_after_return=1
+export LSAN_OPTIONS=suppressions=$root/tools/lsan.supp:print_suppressions=0
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+cd build-sanitize
+ctest --output-on-failure -j "$(nproc)" -LE '^(book|install)$' "$@"
