@@ -7,7 +7,11 @@
 # option draw 60 frames (their default is "until the window closes"). A chapter whose target was
 # not configured (a missing dependency) or that needs a display when there is none is skipped,
 # with the reason. Exit code 1 when a chapter fails to build or to run; a chapter whose run takes
-# longer than 10 s is flagged but does not fail. CTest runs this as book.course_flow.
+# longer than 10 s is flagged but does not fail. Then it runs every command of the chapter's
+# page (the build/bin/... lines of its ```sh blocks, and the `$ build/bin/...` lines of pasted
+# outputs) from the same scratch folder; a command that fails counts as a failed run. At the
+# end the checkout must hold nothing new (git status and build/out/ as before): the programs
+# write into the folder they run in. CTest runs this as book.course_flow.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$(cd "${1:-$root/build}" 2>/dev/null && pwd)" || { echo "course_flow: no build folder ${1:-$root/build} (run tools/build.sh first)" >&2; exit 1; }
@@ -26,6 +30,22 @@ mapfile -t folders < <(cd "$root/chapters" && for d in */; do
   d=${d%/}; [[ -f "$d/main.cpp" && $d =~ ^[0-9]+\.[0-9]+-[a-z0-9-]+$ ]] && echo "$d"; done | sort -V)
 
 logdir=$(mktemp -d)
+status_before=$(git -C "$root" status --porcelain --untracked-files=all 2>/dev/null)
+out_before=$(ls -A "$root/build/out" 2>/dev/null)
+export ZRAKA_ROOT="$root"
+# The commands a page shows: build/bin/<program> lines of ```sh blocks and `$ build/bin/...`
+# lines (comments after # dropped; lines ending in \ joined).
+page_commands() {
+  awk '
+    /^```/ { if (inblock) { inblock = 0 } else { inblock = 1; sh = ($0 ~ /^```(sh|bash)?$/) ; text = ($0 ~ /^```text/) } ; next }
+    inblock {
+      line = $0
+      if (line ~ /^\$ /) line = substr(line, 3)
+      else if (!sh) next
+      while (line ~ /\\$/ && (getline nxt) > 0) { sub(/\\$/, "", line); line = line " " nxt }
+      if (line ~ /(^|&& |^[^#]*[ ;])build\/bin\//) print line
+    }' "$1" | grep -v '^for \|^done\|^  ' | sed -E 's/[[:space:]]+#[^"]*$//'
+}
 trap 'rm -rf "$logdir"' EXIT
 rows=()
 failed=0 skipped=0 slow=0 ok=0
@@ -94,8 +114,38 @@ for folder in "${folders[@]}"; do
       slow=$((slow + 1))
     fi
   fi
+  # The page's commands, from the same scratch folder.
+  page=$(ls "$root"/book/"$section"-*.md 2>/dev/null | head -n 1)
+  [[ $section == 0.0 ]] && page="$root/book/intro.md"
+  if [[ -n $page && -f $page && ${wrap[*]:-} == "" ]]; then
+    pc=0 pf=0
+    while IFS= read -r cmd; do
+      [[ -z $cmd || $cmd == *xvfb-run* || $cmd == *pathtrace_bench* || $cmd == *bvh_embree* ]] && continue
+      pc=$((pc + 1))
+      if ! (cd "$work" && timeout "$run_timeout" bash -c "${cmd//build\/bin\//$bin/}") >>"$logdir/$slug.page" 2>&1; then
+        # A page also shows commands that must fail (a bad scene): those print "error:".
+        if ! tail -n 3 "$logdir/$slug.page" | grep -q '^error: '; then
+          pf=$((pf + 1))
+          echo "course_flow: $folder: page command failed: $cmd" >&2
+          tail -n 5 "$logdir/$slug.page" >&2
+        fi
+      fi
+    done < <(page_commands "$page")
+    note="$note; page: $pc commands"
+    if [[ $pf -gt 0 ]]; then
+      note="$note, $pf FAILED"
+      failed=$((failed + 1))
+    fi
+  fi
   rows+=("$section|$slug|$tb|$tr|$code|$note")
 done
+
+if [[ $(git -C "$root" status --porcelain --untracked-files=all 2>/dev/null) != "$status_before" ||
+      $(ls -A "$root/build/out" 2>/dev/null) != "$out_before" ]]; then
+  echo "course_flow: the run left files in the checkout:" >&2
+  git -C "$root" status --porcelain --untracked-files=all >&2
+  failed=$((failed + 1))
+fi
 
 printf '\n%-8s %-16s %9s %9s %5s  %s\n' chapter program build_s run_s exit note
 printf '%-8s %-16s %9s %9s %5s  %s\n' ------- ------- ------- ----- ---- ----

@@ -11,7 +11,7 @@ trap 'rm -rf "$work"' EXIT
 cd "$work"
 
 # --- 1.0-1.2
-"$bin/sphere" --width 320 --height 240 --out sphere >/dev/null && cp sphere.png "$fig/1.2-sphere.png"
+"$bin/sphere" --width 320 --height 240 --out sphere.png >/dev/null && cp sphere.png "$fig/1.2-sphere.png"
 # --- 1.3-1.4
 "$bin/bezier" --samples 200000 --out 1.3-bezier.png --obj patch.obj >/dev/null && cp 1.3-bezier.png "$fig/"
 "$bin/normals" --out 1.4-normals.png >/dev/null && cp 1.4-normals.png "$fig/"
@@ -34,20 +34,20 @@ else
   echo "make_figures: no matplotlib venv, skipping the 1.6 plots" >&2
 fi
 # --- 3.1-3.3
-"$bin/rasterization" --width 320 --height 240 --out 3.1 >/dev/null && cp 3.1-raster.png "$fig/"
-"$bin/rasterization" --width 64 --height 48 --triangles 0 --out 3.1-square >/dev/null && cp 3.1-square-diff.png "$fig/"
+"$bin/rasterization" --width 320 --height 240 --out 3.1.png >/dev/null && cp 3.1-raster.png "$fig/"
+"$bin/rasterization" --width 64 --height 48 --triangles 0 --out 3.1-square.png >/dev/null && cp 3.1-square-diff.png "$fig/"
 xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "${xvfb[@]}" "$bin/opengl" --frames 3 --screenshot 3.2-triangle.png >/dev/null && cp 3.2-triangle.png "$fig/"
 "${xvfb[@]}" "$bin/opengl" --frames 3 --thesis-stride --screenshot 3.2-thesis-stride.png >/dev/null && cp 3.2-thesis-stride.png "$fig/"
 "${xvfb[@]}" "$bin/tessellation" --frames 3 --level 8 --screenshot 3.2-teapot.png >/dev/null && cp 3.2-teapot.png "$fig/"
 "${xvfb[@]}" "$bin/tessellation" --frames 3 --level 4 --wireframe --screenshot 3.2-teapot-wire.png >/dev/null && cp 3.2-teapot-wire.png "$fig/"
 # --- 1.7-1.9
-"$bin/reflection" --width 320 --height 160 --spp 128 --out 1.7-reflection >/dev/null && cp 1.7-reflection.png "$fig/"
-"$bin/refraction" --width 320 --height 200 --spp 128 --out 1.8-refraction >/dev/null && cp 1.8-refraction.png "$fig/"
-"$bin/bxdf" --out 1.9-bxdf >/dev/null && cp 1.9-bxdf.png "$fig/"
+"$bin/reflection" --width 320 --height 160 --spp 128 --out 1.7-reflection.png >/dev/null && cp 1.7-reflection.png "$fig/"
+"$bin/refraction" --width 320 --height 200 --spp 128 --out 1.8-refraction.png >/dev/null && cp 1.8-refraction.png "$fig/"
+"$bin/bxdf" --out 1.9-bxdf.png >/dev/null && cp 1.9-bxdf.png "$fig/"
 # --- 5.1, 5.3
-"$bin/antialiasing" --out 5.1-antialiasing >/dev/null && cp 5.1-antialiasing.png "$fig/"
-"$bin/importance" --out 5.3-importance >/dev/null && cp 5.3-importance.png "$fig/"
+"$bin/antialiasing" --out 5.1-antialiasing.png >/dev/null && cp 5.1-antialiasing.png "$fig/"
+"$bin/importance" --out 5.3-importance.png >/dev/null && cp 5.3-importance.png "$fig/"
 if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
   aa_plot=("${bin%/build/bin}/build/plot-venv/bin/python" "${bin%/build/bin}/tools/plot_convergence.py")
   "${aa_plot[@]}" 5.1-antialiasing-{regular,uniform,stratified}.csv -o "$fig/5.1-rmse.png" \
@@ -58,7 +58,7 @@ else
   echo "make_figures: no matplotlib venv, skipping the 5.1 and 5.3 plots" >&2
 fi
 # --- 5.2
-"$bin/bvh" --divs 32 --out 5.2-bvh >/dev/null && cp 5.2-bvh-heat.png "$fig/"
+"$bin/bvh" --divs 32 --out 5.2-bvh-heat.png >/dev/null && cp 5.2-bvh-heat.png "$fig/"
 # --- assignments (book/assignments): the target images, made by the reference solutions
 "$bin/assignment-01-cylinder-render" --out "${bin%/build/bin}/book/assignments/01-cylinder/target.png" >/dev/null
 "$bin/assignment-02-ggx-render" --out "${bin%/build/bin}/book/assignments/02-ggx/target.png" >/dev/null
@@ -68,16 +68,16 @@ fi
 "$bin/shaders" --out 2.1-shaders.png >/dev/null && cp 2.1-shaders.png "$fig/"
 "$bin/shaders" --shader normal --out 2.1-normal.png >/dev/null && cp 2.1-normal.png "$fig/"
 "$bin/whitted" --out 2.2-default.png >/dev/null && cp 2.2-default.png "$fig/"
-"$bin/whitted" scenes/box.yaml --spp 16 --out 2.2-box.png >/dev/null && cp 2.2-box.png "$fig/"
+"$bin/whitted" --scene box --spp 16 --out 2.2-box.png >/dev/null && cp 2.2-box.png "$fig/"
 for g in reflect both refract; do
-  "$bin/whitted" scenes/glass-$g.yaml --width 240 --height 180 --spp 16 --out 2.2-glass-$g.png >/dev/null
+  "$bin/whitted" --scene glass-$g --width 240 --height 180 --spp 16 --out 2.2-glass-$g.png >/dev/null
   cp 2.2-glass-$g.png "$fig/"
 done
-"$bin/whitted" scenes/teapot.yaml --spp 16 --out 2.2-teapot.png >/dev/null && cp 2.2-teapot.png "$fig/"
-"$bin/whitted" scenes/box.yaml --spp 16 --depth 1 --out 2.2-box-depth1.png >/dev/null && cp 2.2-box-depth1.png "$fig/"
+"$bin/whitted" --scene teapot --spp 16 --out 2.2-teapot.png >/dev/null && cp 2.2-teapot.png "$fig/"
+"$bin/whitted" --scene box --spp 16 --depth 1 --out 2.2-box-depth1.png >/dev/null && cp 2.2-box-depth1.png "$fig/"
 # --- realtime (4.3)
 "$bin/realtime" --headless --width 320 --height 240 --frames 64 --out 4.3-spheres.png >/dev/null && cp 4.3-spheres.png "$fig/"
-"$bin/realtime" --headless --scene cornell --width 240 --height 240 --frames 64 --out 4.3-cornell.png >/dev/null && cp 4.3-cornell.png "$fig/"
+"$bin/realtime" --headless --scene cornell-glass --width 240 --height 240 --frames 64 --out 4.3-cornell.png >/dev/null && cp 4.3-cornell.png "$fig/"
 "$bin/realtime" --headless --width 200 --height 200 --frames 1 --weak-seed --out 4.3-weak-seed.png >/dev/null && cp 4.3-weak-seed.png "$fig/"
 "$bin/realtime" --headless --width 200 --height 200 --frames 1 --out 4.3-hashed-seed.png >/dev/null && cp 4.3-hashed-seed.png "$fig/"
 "$bin/realtime" --headless --scene "$fig/../../scenes/triangle-light.yaml" --out 4.3-triangle-light.png >/dev/null && cp 4.3-triangle-light.png "$fig/"
@@ -85,11 +85,11 @@ done
 xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "${xvfb[@]}" "$bin/realtime" --frames 16 --width 320 --height 240 --scene cornell-spheres --screenshot 4.3-viewer.png >/dev/null && cp 4.3-viewer.png "$fig/"
 # --- 2.3, 4.2 (path tracing; several minutes on two cores)
-"$bin/pathtrace" --scene cornell-glass --width 160 --height 160 --spp 256 --out 2.3-pathtrace >/dev/null && cp 2.3-pathtrace.png "$fig/"
-"$bin/pathtrace" --scene cornell-glass --width 64 --height 64 --centre --spp 2048 --seed 1001 --pfm ref.pfm --out ref >/dev/null
+"$bin/pathtrace" --scene cornell-glass --width 160 --height 160 --spp 256 --out 2.3-pathtrace.png >/dev/null && cp 2.3-pathtrace.png "$fig/"
+"$bin/pathtrace" --scene cornell-glass --width 64 --height 64 --centre --spp 2048 --seed 1001 --pfm ref.pfm --out ref.png >/dev/null
 for m in naive nee mis; do
   "$bin/pathtrace" --scene cornell-glass --width 64 --height 64 --centre --spp 1024 --integrator $m \
-    --reference ref.pfm --report 2.3-$m.csv --out 2.3-$m >/dev/null
+    --reference ref.pfm --report 2.3-$m.csv --out 2.3-$m.png >/dev/null
 done
 "$bin/results" --tile 80 --spp-sweep 1,8,64,512 --depth-spp 256 --conv-spp 512 --ref-spp 2048 >/dev/null
 cp 4.2-samples.png 4.2-depth.png "$fig/"

@@ -7,5 +7,5 @@ bash tools/setup.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build --target whitted -j "$(nproc)"
 mkdir -p build/out
-./build/bin/whitted scenes/default.yaml --out build/out/default.png
+./build/bin/whitted --scene default --out build/out/default.png
 echo "rendered: $(pwd)/build/out/default.png"

@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
         "  3. path tracing      + random bounces until a light is reached     2.3, 4.2, 4.3\n"
         "\n"
         "Two back ends:\n"
-        "  CPU  plain C++, writes image files (PPM, PNG, PFM): every chapter but the three below\n"
+        "  CPU  plain C++, writes image files (PPM, PNG, PFM): every chapter but the GPU ones below\n"
         "  GPU  OpenGL draws in a live window (3.2), OpenCL computes on the device (3.3), and\n"
         "       4.3 joins them: OpenCL path-traces each frame, OpenGL shows it\n"
         "\n");

@@ -1,6 +1,6 @@
 // Chapter 1.2 — the sphere. Ray-cast one sphere: every pixel sends a ray, and the pixel is
 // shaded where the ray hits (by the normal, so the shape reads) and white where it misses.
-// Writes the image as PPM (the thesis's text pixel matrix) and PNG, checks every hit point
+// Writes the image (--out: .ppm is the thesis's text pixel matrix, or .png), checks every hit point
 // lies on the sphere, and compares the fraction of pixels hit with the fraction the sphere's
 // projected disc covers, computed in closed form.
 #include <zraka/camera.hpp>
@@ -9,7 +9,7 @@
 #include <zraka/sphere.hpp>
 #include <zraka/stopwatch.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <cstdio>
 
@@ -32,15 +32,12 @@ double disc_fraction(double R, double W, double H) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int width = 320, height = 240;
+  zraka::program_options opt{"Chapter 1.2: ray-cast a sphere", zraka::take::size | zraka::take::out};
+  opt.width = 320, opt.height = 240, opt.out = "sphere.png";
   double radius = 1.0;
-  std::string out = "sphere";
-  CLI::App app{"Chapter 1.2: ray-cast a sphere, write <out>.ppm and <out>.png"};
-  app.add_option("--width", width, "image width in pixels");
-  app.add_option("--height", height, "image height in pixels");
-  app.add_option("--radius", radius, "sphere radius (the camera is 4 units away)");
-  app.add_option("--out", out, "output name without extension");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  opt.app.add_option("--radius", radius, "sphere radius (the camera is 4 units away)");
+  if (const auto done = opt.parse(argc, argv)) return *done;
+  const int width = opt.width, height = opt.height;
 
   return zraka::guarded([&] {
     using namespace zraka;
@@ -93,15 +90,14 @@ int main(int argc, char** argv) {
 
     if (std::abs(measured - expected) > bound)
       throw error("the measured fraction is outside its bound: a bug in the camera or the sphere");
-    write_ppm(img, out + ".ppm");
-    write_png(img, out + ".png");
+    write_image(img, opt.out);
     std::printf("pixels hit: %ld of %d (%.1f%%)\n", hits, width * height, 100 * measured);
     std::printf("expected from the projected disc (radius %.4g px): %.2f%%; difference %.3f%% "
                 "(at most %.2f%%: pixels the silhouette crosses)\n",
                 disc_px, 100 * expected, 100 * (measured - expected), 100 * bound);
     std::printf("worst distance of a hit point from the sphere: %.3g (radius %g)\n",
                 worst_off_surface, radius);
-    std::printf("wrote %s.ppm and %s.png\n", out.c_str(), out.c_str());
+    std::printf("wrote %s\n", opt.out.c_str());
     std::printf("summary: %dx%d rays in %.3f s, %.2f%% hit (expected %.2f%%), hit points within "
                 "%.3g of the sphere\n", width, height, clock.seconds(), 100 * measured,
                 100 * expected, worst_off_surface);

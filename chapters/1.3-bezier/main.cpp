@@ -11,7 +11,7 @@
 #include <zraka/stopwatch.hpp>
 #include <zraka/tessellate.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <cstdio>
 #include <sstream>
@@ -128,20 +128,20 @@ std::string to_obj(const mesh& m) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  program_options cli{"Chapter 1.3: Bezier curves (Bernstein vs de Casteljau) and patches", take::size | take::seed | take::out};
+  cli.width = 400, cli.height = 300, cli.out = "bezier.png";
+  int curves_n = 1000, grid = 8;
+  std::string obj = "patch.obj";
   long samples = 1'000'000;
-  int curves_n = 1000, width = 400, height = 300, grid = 8;
-  std::uint64_t seed = 1;
-  std::string out = "bezier.png", obj = "patch.obj";
-  CLI::App app{"Chapter 1.3: Bezier curves (Bernstein vs de Casteljau) and patches"};
-  app.add_option("--samples", samples, "evaluations per timing run (5 runs, the fastest counts)");
-  app.add_option("--curves", curves_n, "random curves for the accuracy comparison");
-  app.add_option("--seed", seed, "seed of the random control points");
-  app.add_option("--width", width, "figure width in pixels");
-  app.add_option("--height", height, "figure height in pixels");
-  app.add_option("--out", out, "the curve figure (.png, .ppm or .pfm)");
-  app.add_option("--obj", obj, "the sampled patch, as a Wavefront OBJ mesh");
-  app.add_option("--grid", grid, "patch samples per side (grid x grid cells)");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  cli.app.add_option("--samples", samples, "evaluations per timing run (5 runs, the fastest counts)");
+  cli.app.add_option("--curves", curves_n, "random curves for the accuracy comparison");
+  cli.app.add_option("--obj", obj, "the sampled patch, as a Wavefront OBJ mesh");
+  cli.app.add_option("--grid", grid, "patch samples per side (grid x grid cells)");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  const int width = cli.width, height = cli.height;
+  const std::uint64_t seed = cli.seed;
+  const std::string& out = cli.out;
+  obj = output_file(obj).string();
 
   return guarded([&] {
     stopwatch total;

@@ -13,7 +13,7 @@
 #include <zraka/stopwatch.hpp>
 #include <zraka/tessellate.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -37,15 +37,14 @@ vec3 finite_difference_normal(const bezier_patch& p, double u, double v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int divs = 8, width = 400, height = 300, aa = 3;
-  std::string out = "normals.png";
-  CLI::App app{"Chapter 1.4: teapot normals: analytic vs finite differences, ray-cast by normal"};
-  app.add_option("--divs", divs, "grid cells per patch side (2 divs^2 triangles per patch)");
-  app.add_option("--width", width, "image width in pixels");
-  app.add_option("--height", height, "image height in pixels");
-  app.add_option("--aa", aa, "aa x aa rays in pixels at edges, on a regular grid (anti-aliasing)");
-  app.add_option("--out", out, "output image (.png, .ppm or .pfm)");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  program_options cli{"Chapter 1.4: teapot normals: analytic vs finite differences, ray-cast by normal", take::size | take::out};
+  cli.width = 400, cli.height = 300, cli.out = "normals.png";
+  int divs = 8, aa = 3;
+  cli.app.add_option("--divs", divs, "grid cells per patch side (2 divs^2 triangles per patch)");
+  cli.app.add_option("--aa", aa, "aa x aa rays in pixels at edges, on a regular grid (anti-aliasing)");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  const int width = cli.width, height = cli.height;
+  const std::string& out = cli.out;
 
   return guarded([&] {
     stopwatch total;

@@ -12,7 +12,7 @@
 #include <zraka/stopwatch.hpp>
 #include <zraka/triangle.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <array>
 #include <cstdio>
@@ -211,20 +211,19 @@ template <class T> double ns_per_test(const std::vector<ray_case<T>>& cases, tri
 }  // namespace
 
 int main(int argc, char** argv) {
-  int width = 320, height = 240, rays = 200000;
-  std::string out = "intersections.png", method_name = "watertight";
-  std::uint64_t seed = 1;
+  program_options cli{"Chapter 1.5: ray-object intersections; renders a scene and compares the three "
+               "ray-triangle methods", take::size | take::seed | take::out};
+  cli.width = 320, cli.height = 240, cli.out = "intersections.png";
+  int rays = 200000;
+  std::string method_name = "watertight";
   bool mask = false;
-  CLI::App app{"Chapter 1.5: ray-object intersections; renders a scene and compares the three "
-               "ray-triangle methods"};
-  app.add_option("--width", width, "image width in pixels");
-  app.add_option("--height", height, "image height in pixels");
-  app.add_option("--out", out, "output image (.png, .ppm or .pfm)");
-  app.add_option("--method", method_name, "triangle method for the image: edge, mt or watertight");
-  app.add_option("--seed", seed, "seed for the random rays of the comparison");
-  app.add_option("--rays", rays, "random rays per method in the comparison");
-  app.add_flag("--mask", mask, "black-on-white silhouettes of the objects (thesis 2.1), no floor");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  cli.app.add_option("--method", method_name, "triangle method for the image: edge, mt or watertight");
+  cli.app.add_option("--rays", rays, "random rays per method in the comparison");
+  cli.app.add_flag("--mask", mask, "black-on-white silhouettes of the objects (thesis 2.1), no floor");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  const int width = cli.width, height = cli.height;
+  const std::uint64_t seed = cli.seed;
+  const std::string& out = cli.out;
 
   return guarded([&] {
     const std::map<std::string, triangle_method> by_name = {

@@ -16,7 +16,7 @@
 #include <zraka/stopwatch.hpp>
 #include <zraka/vec.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -160,15 +160,17 @@ result report(const convergence_log& log, const std::string& csv, const std::str
 }  // namespace
 
 int main(int argc, char** argv) {
+  program_options cli{"Chapter 1.6: Monte Carlo integration, error against N and against run time", take::seed};
   settings s;
-  CLI::App app{"Chapter 1.6: Monte Carlo integration, error against N and against run time"};
-  app.add_option("--seed", s.seed, "random seed (same seed, same estimates)");
-  app.add_option("--min-log2n", s.min_log2n, "smallest run has N = 2^this samples (default 4)");
-  app.add_option("--max-log2n", s.max_log2n,
-                 "largest run has N = 2^this samples (default 20, about 1 s in all; at most 28)");
-  app.add_option("--csv-dir", s.csv_dir, "folder for the CSV files (default: current folder)");
-  app.add_option("--hist-samples", s.hist_samples, "samples for the histogram of r = 2 sqrt(xi)");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  cli.seed = s.seed;
+  s.csv_dir = zraka::output_dir();
+  cli.app.add_option("--min-log2n", s.min_log2n, "smallest run has N = 2^this samples (default 4)");
+  cli.app.add_option("--max-log2n", s.max_log2n,
+                     "largest run has N = 2^this samples (default 20, about 1 s in all; at most 28)");
+  cli.app.add_option("--csv-dir", s.csv_dir, "folder for the CSV files (from inside the checkout: build/out)");
+  cli.app.add_option("--hist-samples", s.hist_samples, "samples for the histogram of r = 2 sqrt(xi)");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  s.seed = cli.seed;
 
   return zraka::guarded([&] {
     using namespace zraka;

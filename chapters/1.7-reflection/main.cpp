@@ -15,7 +15,7 @@
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/render.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <cstdio>
 
@@ -49,25 +49,18 @@ scene reflection_scene(int width, int height) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int width = 240, height = 120, spp = 32, probe_samples = 4096, depth = 6;
-  std::uint64_t seed = 1;
-  render_options opt;
-  std::string out = "reflection";
-  CLI::App app{"Chapter 1.7: mirror, fuzzy metal and Lambertian reflection; view dependence measured"};
-  app.add_option("--width", width, "image width in pixels");
-  app.add_option("--height", height, "image height in pixels");
-  app.add_option("--spp", spp, "samples per pixel");
-  app.add_option("--probe-samples", probe_samples, "paths per measured radiance");
-  app.add_option("--depth", depth, "maximum bounces");
-  app.add_option("--seed", seed, "random seed");
-  app.add_option("--threads", opt.threads, "threads (0 = all cores)");
-  app.add_option("--out", out, "output name without extension");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  program_options cli{"Chapter 1.7: mirror, fuzzy metal and Lambertian reflection; view dependence measured", take::image | take::depth};
+  cli.width = 240, cli.height = 120, cli.spp = 32, cli.depth = 6, cli.out = "reflection.png";
+  int probe_samples = 4096;
+  cli.app.add_option("--probe-samples", probe_samples, "paths per measured radiance");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  const int width = cli.width, height = cli.height, spp = cli.spp, depth = cli.depth;
+  const std::uint64_t seed = cli.seed;
+  const render_options opt = cli.render();
+  const std::string& out = cli.out;
 
   return guarded([&] {
-    image::check_size(width, height);
     if (probe_samples < 2) throw error("--probe-samples must be at least 2");
-    if (depth < 1) throw error("--depth must be at least 1");
     scene sc = reflection_scene(width, height);
     // [listing balls]
     const rgb albedo(0.8f);
@@ -88,8 +81,8 @@ int main(int argc, char** argv) {
       const vec2 o = pixel_sample(pixel_pattern::stratified, c.sample, c.spp, c.random);
       return tracer(cam.generate((c.x + o.x) / width, (c.y + o.y) / height), c.random, c.rays);
     }, opt);
-    write_png(img, out + ".png");
-    std::printf("%s\nwrote %s.png\n", summary(img, spp, st).c_str(), out.c_str());
+    write_image(img, out);
+    std::printf("%s\nwrote %s\n", summary(img, spp, st).c_str(), out.c_str());
 
     // [listing probe]
     // The radiance leaving point x towards eye e: paths along the ray from e through x (the

@@ -11,7 +11,7 @@
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/render.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <cstdio>
 
@@ -62,26 +62,18 @@ scene glass_scene(int width, int height, double ior) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int width = 240, height = 150, spp = 32, depth = 10;
+  program_options cli{"Chapter 1.8: refraction - Snell, Fresnel, Schlick and total internal reflection; a glass ball", take::image | take::depth};
+  cli.width = 240, cli.height = 150, cli.spp = 32, cli.depth = 10, cli.out = "refraction.png";
   double ior = 1.5;
-  std::uint64_t seed = 1;
-  render_options opt;
-  std::string out = "refraction";
-  CLI::App app{"Chapter 1.8: refraction - Snell, Fresnel, Schlick and total internal reflection; a glass ball"};
-  app.add_option("--ior", ior, "refractive index of the glass (air is 1)");
-  app.add_option("--width", width, "image width in pixels");
-  app.add_option("--height", height, "image height in pixels");
-  app.add_option("--spp", spp, "samples per pixel");
-  app.add_option("--depth", depth, "maximum bounces");
-  app.add_option("--seed", seed, "random seed");
-  app.add_option("--threads", opt.threads, "threads (0 = all cores)");
-  app.add_option("--out", out, "output name without extension");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  cli.app.add_option("--ior", ior, "refractive index of the glass (air is 1)");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  const int width = cli.width, height = cli.height, spp = cli.spp, depth = cli.depth;
+  const std::uint64_t seed = cli.seed;
+  const render_options opt = cli.render();
+  const std::string& out = cli.out;
 
   return guarded([&] {
     if (!(ior >= 1 && ior <= 4)) throw error("--ior must be between 1 and 4, got " + std::to_string(ior));
-    image::check_size(width, height);
-    if (depth < 1) throw error("--depth must be at least 1");
     stopwatch total;
 
     const double angles[] = {0, 10, 20, 30, 40, 41, 41.5, 42, 45, 50, 60, 70, 80, 85, 89, 90};
@@ -106,8 +98,8 @@ int main(int argc, char** argv) {
       const vec2 o = pixel_sample(pixel_pattern::stratified, c.sample, c.spp, c.random);
       return tracer(cam.generate((c.x + o.x) / width, (c.y + o.y) / height), c.random, c.rays);
     }, opt);
-    write_png(img, out + ".png");
-    std::printf("%s\nwrote %s.png\n", summary(img, spp, st).c_str(), out.c_str());
+    write_image(img, out);
+    std::printf("%s\nwrote %s\n", summary(img, spp, st).c_str(), out.c_str());
     std::printf("summary: %.2f s; critical angle %.2f degrees; Snell residual %.1e; %llu NaN/inf samples\n",
                 total.seconds(), crit ? *crit / deg : 90.0, worst, static_cast<unsigned long long>(st.nonfinite));
     return 0;

@@ -19,7 +19,7 @@
 #include <zraka/scene.hpp>
 #include <zraka/scene_query.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <cstdio>
 
@@ -57,22 +57,17 @@ template <class Sampler> estimator albedo(int n, std::uint64_t seed, std::uint32
 }  // namespace
 
 int main(int argc, char** argv) {
-  int width = 360, height = 150, spp = 4, furnace_samples = 20000;
-  std::uint64_t seed = 1;
-  render_options opt;
-  std::string out = "bxdf";
-  CLI::App app{"Chapter 1.9: Phong and Blinn-Phong local shading; white-furnace albedo of BRDFs"};
-  app.add_option("--width", width, "image width in pixels");
-  app.add_option("--height", height, "image height in pixels");
-  app.add_option("--spp", spp, "samples per pixel (anti-aliasing only: the shading has no noise)");
-  app.add_option("--furnace-samples", furnace_samples, "Monte Carlo samples per albedo estimate");
-  app.add_option("--seed", seed, "random seed");
-  app.add_option("--threads", opt.threads, "threads (0 = all cores)");
-  app.add_option("--out", out, "output name without extension");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  program_options cli{"Chapter 1.9: Phong and Blinn-Phong local shading; white-furnace albedo of BRDFs", take::image};
+  cli.width = 360, cli.height = 150, cli.spp = 4, cli.out = "bxdf.png";
+  int furnace_samples = 20000;
+  cli.app.add_option("--furnace-samples", furnace_samples, "Monte Carlo samples per albedo estimate");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  const int width = cli.width, height = cli.height, spp = cli.spp;
+  const std::uint64_t seed = cli.seed;
+  const render_options opt = cli.render();
+  const std::string& out = cli.out;
 
   return guarded([&] {
-    image::check_size(width, height);
     if (furnace_samples < 2) throw error("--furnace-samples must be at least 2");
     stopwatch total;
 
@@ -100,8 +95,8 @@ int main(int argc, char** argv) {
       const bool blinn = sh.object.index >= 5;  // the second row
       return local_shade(sc.materials[sh.material], sh.h, r.direction, light_pos, blinn);
     }, opt);
-    write_png(img, out + ".png");
-    std::printf("%s\nwrote %s.png: top row Phong, bottom row Blinn-Phong, shininess 1 8 32 128 512\n\n",
+    write_image(img, out);
+    std::printf("%s\nwrote %s: top row Phong, bottom row Blinn-Phong, shininess 1 8 32 128 512\n\n",
                 summary(img, spp, st).c_str(), out.c_str());
 
     // Part 2: the white furnace.

@@ -8,7 +8,7 @@
 // the two images are the same bits (the shader depends on its pixel alone), and counts the
 // black pixels against the area the spheres cover on the image plane.
 #include <zraka/camera.hpp>
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image_io.hpp>
 #include <zraka/render.hpp>
@@ -49,17 +49,16 @@ rgb normal_shader(const std::vector<sphere>& objects, const ray& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int width = 320, height = 240;
-  std::string shader = "mask", out = "shaders.png";
+  program_options cli{"Chapter 2.1: a per-pixel shader run over an image on all threads", take::size | take::threads | take::out};
+  cli.width = 320, cli.height = 240, cli.out = "shaders.png";
+  std::string shader = "mask";
   render_options ro;
   ro.progress = false;
-  CLI::App app{"Chapter 2.1: a per-pixel shader run over an image on all threads"};
-  app.add_option("--width", width, "image width in pixels");
-  app.add_option("--height", height, "image height in pixels");
-  app.add_option("--shader", shader, "mask (thesis Listing 2.1) or normal");
-  app.add_option("--threads", ro.threads, "threads (0 = all cores)");
-  app.add_option("--out", out, "output image (.png, .ppm or .pfm)");
-  if (const auto done = parse_command_line(app, argc, argv)) return *done;
+  cli.app.add_option("--shader", shader, "mask (thesis Listing 2.1) or normal");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  const int width = cli.width, height = cli.height;
+  const std::string& out = cli.out;
+  ro.threads = cli.threads;
 
   return guarded([&] {
     image::check_size(width, height);

@@ -6,21 +6,19 @@
 // error against that image and the time so far (error against run time), and --report writes the
 // same table as CSV for tools/plot_convergence.py. --time-budget stops the doubling early.
 //
-// Scenes: a scene file (scenes/README.md), the built-in Cornell boxes (cornell, cornell-glass,
-// cornell-spheres; scenes/cornell*.yaml hold the same) and `furnace`, a camera inside a glowing
-// Lambertian sphere whose radiance has a closed form, checked here.
-#include <zraka/cli.hpp>
+// Scenes (--scene): a name from named_scenes.hpp, among them the Cornell boxes (cornell,
+// cornell-glass, cornell-spheres; scenes/cornell*.yaml hold the same) and `furnace`, a camera
+// inside a glowing Lambertian sphere whose radiance has a closed form, checked here; or a
+// scene file (scenes/README.md).
 #include <zraka/convergence.hpp>
-#include <zraka/cornell.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image_error.hpp>
 #include <zraka/image_io.hpp>
 #include <zraka/path.hpp>
 #include <zraka/pixel_sampling.hpp>
+#include <zraka/program_options.hpp>
 #include <zraka/progressive.hpp>
-#include <zraka/scene_file.hpp>
-
-#include <CLI/CLI.hpp>
+#include <zraka/scene_argument.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -30,31 +28,6 @@
 using namespace zraka;
 
 namespace {
-
-// The furnace: the camera inside a sphere of albedo a that glows with L_e on its inside. Every
-// path sees L_e at each bounce, weighted a^k, so L = L_e (1 + a + a^2 + ...) = L_e / (1 - a),
-// or L_e (1 - a^(D+1)) / (1 - a) when paths stop after D bounces.
-constexpr double furnace_albedo = 0.5, furnace_Le = 1.0;
-scene furnace_scene() {
-  scene sc;
-  material m = material::lambertian(rgb(float(furnace_albedo)));
-  m.radiance = rgb(float(furnace_Le));
-  m.two_sided = true;  // it glows towards the inside, where the camera is
-  sc.add(sphere{{0, 0, 0}, 1}, sc.add_material(m));
-  sc.camera.position = {0.2, -0.1, 0.3};
-  sc.camera.look_at = {0, 0, -1};
-  sc.settings.width = sc.settings.height = 64;
-  return sc;
-}
-
-scene load_scene(const std::string& name) {
-  if (name.size() > 5 && name.substr(name.size() - 5) == ".yaml") return load_scene_file(name).sc;
-  if (name == "cornell") return cornell_box<double>(cornell_variant::boxes);
-  if (name == "cornell-glass") return cornell_box<double>(cornell_variant::glass);
-  if (name == "cornell-spheres") return cornell_box<double>(cornell_variant::spheres);
-  if (name == "furnace") return furnace_scene();
-  throw error("unknown scene '" + name + "' (cornell, cornell-glass, cornell-spheres, furnace, or a .yaml file)");
-}
 
 // The scene as JSON for tools/mitsuba_reference.py: spheres, quads, materials, camera, size.
 std::string scene_json(const scene& sc, int width, int height, int depth) {
@@ -127,49 +100,43 @@ std::string scene_json(const scene& sc, int width, int height, int depth) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_name = "cornell-glass", method = "mis", selection = "power", out = "pathtrace", pfm, reference, report, json;
-  std::optional<int> width, height, spp, depth;
+  program_options opt{"Chapter 2.3: path tracing with the naive, nee or mis integrator, error against run time",
+                      take::scene | take::image | take::depth};
+  opt.scene_names = named_scene_list();
+  opt.scene = "cornell-glass", opt.out = "pathtrace.png", opt.scene_settings = true;
+  opt.min_depth = 0, opt.max_depth = 1000;
+  std::string method = "mis", selection = "power", pfm, reference, report, json;
   int rr_depth = 3;
   double budget = 0;
   bool centre = false;
-  std::uint64_t seed = 1;
-  render_options ropt;
-  CLI::App app{"Chapter 2.3: path tracing with the naive, nee or mis integrator, error against run time"};
-  app.add_option("--scene", scene_name, "cornell, cornell-glass, cornell-spheres or furnace");
+  CLI::App& app = opt.app;
   app.add_option("--integrator", method, "naive, nee or mis");
-  app.add_option("--width", width, "image width (default: the scene's)");
-  app.add_option("--height", height, "image height (default: the scene's)");
-  app.add_option("--spp", spp, "samples per pixel (default: the scene's)");
-  app.add_option("--depth", depth, "maximum bounces; 0 = only what the camera sees (default: the scene's)");
   app.add_option("--rr-depth", rr_depth, "Russian roulette from this many bounces on");
   app.add_option("--lights", selection, "how next-event estimation chooses a light: power or uniform");
-  app.add_option("--seed", seed, "random seed");
-  app.add_option("--threads", ropt.threads, "threads (0 = all cores)");
   app.add_flag("--centre", centre, "sample every pixel at its centre (no anti-aliasing): the error against a "
                "reference made the same way is then the light transport's alone");
   app.add_option("--time-budget", budget, "stop doubling the samples after this many seconds (0 = no limit)");
   app.add_option("--reference", reference, "reference image (.pfm): print the error after every pass");
   app.add_option("--report", report, "write the error table as CSV (needs --reference)");
-  app.add_option("--out", out, "output PNG name without extension");
   app.add_option("--pfm", pfm, "also write the linear image as PFM (e.g. to be a reference)");
   app.add_option("--export", json, "write the scene as JSON for tools/mitsuba_reference.py and stop");
-  if (const auto done = parse_command_line(app, argc, argv)) return *done;
+  if (const auto done = opt.parse(argc, argv)) return *done;
 
   return guarded([&] {
     const stopwatch clock;
-    scene sc = load_scene(scene_name);
-    const int W = width.value_or(sc.settings.width), H = height.value_or(sc.settings.height);
-    image::check_size(W, H);
-    sc.settings.width = W, sc.settings.height = H;
+    const std::string& scene_name = opt.scene;
+    scene sc = load_scene_argument(scene_name).sc;
+    opt.apply_to(sc.settings);
+    const int W = opt.width, H = opt.height;
+    for (std::string* f : {&pfm, &report, &json})
+      if (!f->empty()) *f = output_file(*f).string();
     path_options io;
     io.method = parse_integrator(method);
-    io.max_depth = depth.value_or(sc.settings.max_depth);
+    io.max_depth = opt.depth;
     io.rr_depth = rr_depth;
     if (selection != "power" && selection != "uniform")
       throw error("--lights must be power or uniform, got '" + selection + "'");
     io.lights = selection == "power" ? light_selection::power : light_selection::uniform;
-    if (io.max_depth < 0 || io.max_depth > 1000)
-      throw error("--depth must be in 0..1000, got " + std::to_string(io.max_depth));
     if (!report.empty() && reference.empty()) throw error("--report needs --reference");
     if (!json.empty()) {
       if (!sc.planes.empty()) throw error("--export: Mitsuba has no infinite plane; use a large quad");
@@ -183,7 +150,7 @@ int main(int argc, char** argv) {
     }
     std::optional<image> ref;
     if (!reference.empty()) {
-      ref = read_pfm(reference);
+      ref = read_pfm(input_file(reference));
       check_same_size(image(W, H), *ref);
     }
 
@@ -195,10 +162,10 @@ int main(int argc, char** argv) {
       return tracer(cam.generate((c.x + o.x) / W, (c.y + o.y) / H), c.random, c.rays);
     };
     progressive_options po;
-    po.max_spp = spp.value_or(sc.settings.spp);
+    po.max_spp = opt.spp;
     po.time_budget = budget;
-    po.seed = seed;
-    po.render = ropt;
+    po.seed = opt.seed;
+    po.render.threads = opt.threads;
     convergence_log log("error of " + scene_name + " (" + name(io.method) + ") against " + reference,
                         {"rmse", "relmse"}, "rmse", "spp");
     progressive_totals tot;
@@ -234,8 +201,8 @@ int main(int argc, char** argv) {
         std::printf("furnace check: %s (|measured/expected - 1| < 2%%)\n",
                     std::abs(mean.x / truncated - 1) < 0.02 ? "ok" : "FAILED");
     }
-    write_png(img, out + ".png");
-    std::printf("wrote %s.png\n", out.c_str());
+    write_image(img, opt.out);
+    std::printf("wrote %s\n", opt.out.c_str());
     if (!pfm.empty()) {
       write_pfm(img, pfm);
       std::printf("wrote %s\n", pfm.c_str());

@@ -13,11 +13,12 @@
 #include <zraka/stopwatch.hpp>
 #include <zraka/triangle.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <cstdlib>
 #include <limits>
 #include <utility>
@@ -126,16 +127,16 @@ int edge_owners(const std::vector<colored_triangle>& tris, int x, int y) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int width = 320, height = 240, count = 60;
-  std::uint64_t seed = 1;
-  std::string out = "raster";
-  CLI::App app{"Chapter 3.1: the same triangles rasterized and ray cast; the images compared"};
-  app.add_option("--width", width, "image width in pixels");
-  app.add_option("--height", height, "image height in pixels");
-  app.add_option("--triangles", count, "number of random triangles (besides a split square)");
-  app.add_option("--seed", seed, "random seed for the triangles");
-  app.add_option("--out", out, "output prefix: <out>-raster.png, <out>-raycast.png, <out>-diff.png");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  zraka::program_options cli{"Chapter 3.1: the same triangles rasterized and ray cast; the images compared",
+                            zraka::take::size | zraka::take::seed | zraka::take::out};
+  cli.width = 320, cli.height = 240, cli.out = "raster.png";
+  int count = 60;
+  cli.app.add_option("--triangles", count, "number of random triangles (besides a split square)");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  const int width = cli.width, height = cli.height;
+  const std::uint64_t seed = cli.seed;
+  // --out x.png names the three images x-raster.png, x-raycast.png and x-diff.png.
+  const std::string raster_file = cli.sibling("-raster"), cast_file = cli.sibling("-raycast"), diff_file = cli.sibling("-diff");
 
   return zraka::guarded([&] {
     using namespace zraka;
@@ -203,9 +204,9 @@ int main(int argc, char** argv) {
         differ_shared += owners > 1;
       }
 
-    write_png(raster, out + "-raster.png");
-    write_png(cast, out + "-raycast.png");
-    write_png(diff, out + "-diff.png");
+    write_image(raster, raster_file);
+    write_image(cast, cast_file);
+    write_image(diff, diff_file);
     std::printf("triangles: %zu (a split square and %d random), image %dx%d\n", tris.size(), count,
                 width, height);
     std::printf("split square: %ld pixels, %ld drawn twice (expected %ld = %d x %d, 0 twice)\n",
@@ -219,8 +220,7 @@ int main(int argc, char** argv) {
                 "the top-left rule leaves these out)\n", differ_on_edge - differ_shared);
     std::printf("rasterizer (objects outer): %.4f s; ray caster (pixels outer): %.4f s\n",
                 raster_seconds, cast_seconds);
-    std::printf("wrote %s-raster.png, %s-raycast.png, %s-diff.png\n", out.c_str(), out.c_str(),
-                out.c_str());
+    std::printf("wrote %s, %s, %s\n", raster_file.c_str(), cast_file.c_str(), diff_file.c_str());
     if (differ != differ_on_edge)
       throw error(std::to_string(differ - differ_on_edge) +
                   " pixel(s) differ away from any edge: a bug in one of the two loops");

@@ -12,6 +12,7 @@
 #include <zraka/stopwatch.hpp>
 
 #include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>  // output_file: a bare name from the checkout goes to build/out/
 
 #include <array>
 #include <cmath>
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
       throw error("--screenshot needs --frames N (the frame to capture is the last one)");
     if (!screenshot.empty() && std::filesystem::path(screenshot).extension() != ".png")
       throw error("--screenshot must name a .png file, got " + screenshot);
+    if (!screenshot.empty()) screenshot = output_file(screenshot).string();
 
     // 1. the window and the OpenGL context
     gl::glfw_session session;

@@ -18,6 +18,7 @@
 #endif
 
 #include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>  // output_file: a bare name from the checkout goes to build/out/
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -84,6 +85,7 @@ int main(int argc, char** argv) {
       throw error("--screenshot needs --frames N (the frame to capture is the last one)");
     if (!screenshot.empty() && std::filesystem::path(screenshot).extension() != ".png")
       throw error("--screenshot must name a .png file, got " + screenshot);
+    if (!screenshot.empty()) screenshot = output_file(screenshot).string();
     const auto set = load_bpt<float>(resource_path(patch_file));
 
     gl::glfw_session session;

@@ -10,7 +10,7 @@
 // Every pixel is sampled at its centre (no anti-aliasing): the error against the reference is
 // then the light transport's alone. With jittered pixels the edges of the directly seen light
 // (radiance 17 next to 0.5) would add a noise no integrator can remove, the same for all three.
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 #include <zraka/convergence.hpp>
 #include <zraka/cornell.hpp>
 #include <zraka/error.hpp>
@@ -73,23 +73,23 @@ renderer make(cornell_variant v, int size, const render_options& ro, std::uint64
 }  // namespace
 
 int main(int argc, char** argv) {
-  int tile = 40, depth_spp = 16, conv_spp = 32, ref_spp = 128, depth = 8;
+  program_options cli{"Chapter 4.2: the thesis's Figures 4.3 and 4.4 with numbers, and error against run time", take::depth | take::seed | take::threads};
+  cli.depth = 8, cli.min_depth = 0, cli.max_depth = 1000;
+  int tile = 40, depth_spp = 16, conv_spp = 32, ref_spp = 128;
+  std::string out_dir = output_dir();
   std::vector<int> sweep{1, 4, 16};
-  std::string out_dir = ".";
-  std::uint64_t seed = 1;
   render_options ro;
   ro.progress = false;
-  CLI::App app{"Chapter 4.2: the thesis's Figures 4.3 and 4.4 with numbers, and error against run time"};
-  app.add_option("--tile", tile, "side of each square image in pixels");
-  app.add_option("--spp-sweep", sweep, "Figure 4.3: samples per pixel of each column")->delimiter(',');
-  app.add_option("--depth-spp", depth_spp, "Figure 4.4: samples per pixel");
-  app.add_option("--conv-spp", conv_spp, "error against run time: samples per pixel of the last pass");
-  app.add_option("--ref-spp", ref_spp, "samples per pixel of the reference (mis, seed + 1000)");
-  app.add_option("--depth", depth, "maximum bounces (Figure 4.3 and the error runs)");
-  app.add_option("--seed", seed, "random seed");
-  app.add_option("--threads", ro.threads, "threads (0 = all cores)");
-  app.add_option("--out-dir", out_dir, "folder for 4.2-samples.png, 4.2-depth.png and 4.2-<method>.csv");
-  if (const auto done = parse_command_line(app, argc, argv)) return *done;
+  cli.app.add_option("--tile", tile, "side of each square image in pixels");
+  cli.app.add_option("--spp-sweep", sweep, "Figure 4.3: samples per pixel of each column")->delimiter(',');
+  cli.app.add_option("--depth-spp", depth_spp, "Figure 4.4: samples per pixel");
+  cli.app.add_option("--conv-spp", conv_spp, "error against run time: samples per pixel of the last pass");
+  cli.app.add_option("--ref-spp", ref_spp, "samples per pixel of the reference (mis, seed + 1000)");
+  cli.app.add_option("--out-dir", out_dir, "folder for 4.2-samples.png, 4.2-depth.png and 4.2-<method>.csv (from inside the checkout: build/out)");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  const int depth = cli.depth;
+  const std::uint64_t seed = cli.seed;
+  ro.threads = cli.threads;
 
   return guarded([&] {
     const stopwatch clock;
@@ -98,7 +98,6 @@ int main(int argc, char** argv) {
       if (n < 1 || n > 65536) throw error("--spp-sweep counts must be in 1..65536, got " + std::to_string(n));
     if (sweep.empty() || sweep.size() > 8) throw error("--spp-sweep needs 1 to 8 counts");
     if (depth_spp < 1 || conv_spp < 1 || ref_spp < 1) throw error("sample counts must be at least 1");
-    if (depth < 0 || depth > 1000) throw error("--depth must be in 0..1000, got " + std::to_string(depth));
     if (!std::filesystem::is_directory(out_dir)) throw error("--out-dir " + out_dir + " is not a folder");
     const std::filesystem::path dir(out_dir);
 

@@ -14,9 +14,10 @@
 #include <zraka/scene.hpp>
 #include <zraka/scene_query.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <cstdio>
+#include <filesystem>
 
 using namespace zraka;
 
@@ -66,22 +67,17 @@ void paste_crop(const image& src, int x0, int y0, int size, int zoom, image& out
 }  // namespace
 
 int main(int argc, char** argv) {
-  int width = 160, height = 120, ref_spp = 512, max_spp = 64;
-  std::uint64_t seed = 1;
-  render_options opt;
-  std::string out = "antialiasing";
-  CLI::App app{"Chapter 5.1: anti-aliasing - RMSE of regular, uniform and stratified pixel sampling"};
-  app.add_option("--width", width, "image width in pixels");
-  app.add_option("--height", height, "image height in pixels");
-  app.add_option("--spp", max_spp, "largest samples per pixel of the sweep 1, 4, 16, ... (a power of 4)");
-  app.add_option("--ref-spp", ref_spp, "samples per pixel of the stratified reference");
-  app.add_option("--seed", seed, "random seed");
-  app.add_option("--threads", opt.threads, "threads (0 = all cores)");
-  app.add_option("--out", out, "output name without extension");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  program_options cli{"Chapter 5.1: anti-aliasing - RMSE of regular, uniform and stratified pixel sampling", take::image};
+  cli.width = 160, cli.height = 120, cli.spp = 64, cli.out = "antialiasing.png";
+  int ref_spp = 512;
+  cli.app.add_option("--ref-spp", ref_spp, "samples per pixel of the stratified reference");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  const int width = cli.width, height = cli.height, max_spp = cli.spp;
+  const std::uint64_t seed = cli.seed;
+  const render_options opt = cli.render();
+  const std::string& out = cli.out;
 
   return guarded([&] {
-    image::check_size(width, height);
     if (max_spp < 1 || max_spp > (1 << 16) || (max_spp & (max_spp - 1)) || (max_spp & 0xAAAAAAAA))
       throw error("--spp must be a power of 4 from 1 to 65536, got " + std::to_string(max_spp));
     if (ref_spp < max_spp) throw error("--ref-spp must be at least --spp (" + std::to_string(max_spp) + ")");
@@ -145,12 +141,13 @@ int main(int argc, char** argv) {
       paste_crop(crops[0][c], cx, cy, crop, zoom, fig, c * (crop * zoom + gap), 0);
       paste_crop(crops[2][c], cx, cy, crop, zoom, fig, c * (crop * zoom + gap), crop * zoom + gap);
     }
-    write_png(fig, out + ".png");
-    write_png(reference, out + "-reference.png");
-    for (int p = 0; p < 3; ++p) logs[p].write_csv(out + "-" + name(patterns[p]) + ".csv");
-    std::printf("wrote %s.png (crop at %d,%d, %dx%d px, x%d; top regular, bottom stratified), %s-reference.png, "
-                "%s-{regular,uniform,stratified}.csv\n",
-                out.c_str(), cx, cy, crop, crop, zoom, out.c_str(), out.c_str());
+    write_image(fig, out);
+    write_image(reference, cli.sibling("-reference"));
+    for (int p = 0; p < 3; ++p) logs[p].write_csv(cli.sibling("-" + std::string(name(patterns[p])), ".csv"));
+    std::printf("wrote %s (crop at %d,%d, %dx%d px, x%d; top regular, bottom stratified), %s, "
+                "%s, ...\n",
+                out.c_str(), cx, cy, crop, crop, zoom, cli.sibling("-reference").c_str(),
+                cli.sibling("-" + std::string(name(patterns[0])), ".csv").c_str());
     const auto& last = [&](int p) { return logs[p].rows().back().values[0]; };
     std::printf("summary: %.2f s; RMSE at %d spp: regular %.5f, uniform %.5f, stratified %.5f; %llu NaN/inf samples\n",
                 total.seconds(), max_spp, last(0), last(1), last(2), static_cast<unsigned long long>(bad));

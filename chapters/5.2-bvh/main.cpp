@@ -6,7 +6,7 @@
 // every triangle would be slow; the table marks those), boxes and triangles tested per ray, and a
 // check that the BVH's hits equal brute force's. Then the growth exponent of the cost per ray
 // against n, a sliver scene where the argument fails (errata C10), and a heat map of boxes tested
-// per pixel, <out>-heat.png.
+// per pixel, --out (bvh-heat.png).
 #include <zraka/bpt.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image_io.hpp>
@@ -17,7 +17,7 @@
 
 #include "teapot_rays.hpp"
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <algorithm>
 #include <ctime>
@@ -37,7 +37,7 @@ struct settings {
   int check_rays = 256;             // rays whose BVH hit is compared with brute force
   int heat_divs = 32;
   std::uint64_t seed = 1;
-  std::string out = "bvh";
+  std::string out = "bvh-heat.png";  // the heat map
   bvh_build_options build = triangle_bvh::default_options();
 };
 
@@ -138,21 +138,19 @@ rgb heat(double x) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  program_options cli{"Chapter 5.2: a BVH over the teapot, ~1k to 1M triangles, against brute force", take::size | take::seed | take::out};
   settings s;
-  CLI::App app{"Chapter 5.2: a BVH over the teapot, ~1k to 1M triangles, against brute force"};
-  app.add_option("--divs", s.divs, "teapot tessellation levels (32 * 2 * divs^2 triangles)");
-  app.add_option("--width", s.width, "camera rays (and heat map): image width");
-  app.add_option("--height", s.height, "camera rays (and heat map): image height");
-  app.add_option("--rays", s.random_rays, "number of incoherent random rays");
-  app.add_option("--brute-tests", s.brute_tests,
-                 "triangle tests brute force may spend per ray set (then a subset of rays)");
-  app.add_option("--check-rays", s.check_rays, "rays per set whose hits are compared to brute force");
-  app.add_option("--heat-divs", s.heat_divs, "the divs of the heat map (must be one of --divs)");
-  app.add_option("--leaf", s.build.max_leaf_size, "most triangles per leaf");
-  app.add_option("--traversal-cost", s.build.traversal_cost, "SAH cost of a box test (a triangle test = 1)");
-  app.add_option("--seed", s.seed, "seed of the random rays");
-  app.add_option("--out", s.out, "output name: writes <out>-heat.png");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  cli.width = s.width, cli.height = s.height, cli.seed = s.seed, cli.out = s.out;
+  cli.app.add_option("--divs", s.divs, "teapot tessellation levels (32 * 2 * divs^2 triangles)");
+  cli.app.add_option("--rays", s.random_rays, "number of incoherent random rays");
+  cli.app.add_option("--brute-tests", s.brute_tests,
+                     "triangle tests brute force may spend per ray set (then a subset of rays)");
+  cli.app.add_option("--check-rays", s.check_rays, "rays per set whose hits are compared to brute force");
+  cli.app.add_option("--heat-divs", s.heat_divs, "the divs of the heat map (must be one of --divs)");
+  cli.app.add_option("--leaf", s.build.max_leaf_size, "most triangles per leaf");
+  cli.app.add_option("--traversal-cost", s.build.traversal_cost, "SAH cost of a box test (a triangle test = 1)");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  s.width = cli.width, s.height = cli.height, s.seed = cli.seed, s.out = cli.out;
 
   return guarded([&] {
     stopwatch total;
@@ -265,8 +263,8 @@ int main(int argc, char** argv) {
     for (int y = 0; y < s.height; ++y)
       for (int x = 0; x < s.width; ++x)
         img.at(x, y) = heat(double(heat_counts[std::size_t(y) * s.width + x]) / most);
-    write_png(img, s.out + "-heat.png");
-    std::printf("\nwrote %s-heat.png: boxes tested per camera ray at divs %d (white: %u or more,"
+    write_image(img, s.out);
+    std::printf("\nwrote %s: boxes tested per camera ray at divs %d (white: %u or more,"
                 " the most: %u)\n", s.out.c_str(), s.heat_divs, most, sorted.back());
 
     char growth[96] = "growth needs two --divs";

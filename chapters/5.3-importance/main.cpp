@@ -21,9 +21,10 @@
 #include <zraka/lights.hpp>
 #include <zraka/scene_query.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/program_options.hpp>
 
 #include <cstdio>
+#include <filesystem>
 
 using namespace zraka;
 
@@ -124,25 +125,20 @@ double mean_value(const image& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int width = 96, height = 72, max_spp = 64, ref_spp = 256, figure_spp = 16;
+  program_options cli{"Chapter 5.3: importance sampling - uniform, cosine, light and mixture sampling of direct light", take::image};
+  cli.width = 96, cli.height = 72, cli.spp = 64, cli.out = "importance.png";
+  int ref_spp = 256, figure_spp = 16;
   double w_light = 0.5, target = 0.01;
-  std::uint64_t seed = 1;
-  render_options opt;
-  std::string out = "importance";
-  CLI::App app{"Chapter 5.3: importance sampling - uniform, cosine, light and mixture sampling of direct light"};
-  app.add_option("--width", width, "image width in pixels");
-  app.add_option("--height", height, "image height in pixels");
-  app.add_option("--spp", max_spp, "largest samples per pixel of the sweep 1, 4, 16, ... (a power of 4)");
-  app.add_option("--ref-spp", ref_spp, "samples per pixel of the reference (stratified light sampling)");
-  app.add_option("--mix", w_light, "mixture: probability of sampling the light");
-  app.add_option("--target", target, "RMSE to report the time to reach");
-  app.add_option("--seed", seed, "random seed");
-  app.add_option("--threads", opt.threads, "threads (0 = all cores)");
-  app.add_option("--out", out, "output name without extension");
-  if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
+  cli.app.add_option("--ref-spp", ref_spp, "samples per pixel of the reference (stratified light sampling)");
+  cli.app.add_option("--mix", w_light, "mixture: probability of sampling the light");
+  cli.app.add_option("--target", target, "RMSE to report the time to reach");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+  const int width = cli.width, height = cli.height, max_spp = cli.spp;
+  const std::uint64_t seed = cli.seed;
+  const render_options opt = cli.render();
+  const std::string& out = cli.out;
 
   return guarded([&] {
-    image::check_size(width, height);
     if (max_spp < 1 || max_spp > (1 << 16) || (max_spp & (max_spp - 1)) || (max_spp & 0xAAAAAAAA))
       throw error("--spp must be a power of 4 from 1 to 65536, got " + std::to_string(max_spp));
     if (ref_spp < 1) throw error("--ref-spp must be at least 1, got " + std::to_string(ref_spp));
@@ -232,11 +228,12 @@ int main(int argc, char** argv) {
     for (int i = 0; i < static_cast<int>(figure_images.size()); ++i)
       for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) fig.at(i * (width + gap) + x, y) = figure_images[i].at(x, y);
-    write_png(fig, out + ".png");
-    write_png(reference, out + "-reference.png");
-    for (std::size_t i = 0; i < 4; ++i) logs[i].write_csv(out + "-" + name(strategies[i]) + ".csv");
-    std::printf("wrote %s.png (uniform, cosine, light, mixture at %d spp), %s-reference.png, %s-<strategy>.csv\n",
-                out.c_str(), figure_spp, out.c_str(), out.c_str());
+    write_image(fig, out);
+    write_image(reference, cli.sibling("-reference"));
+    for (std::size_t i = 0; i < 4; ++i) logs[i].write_csv(cli.sibling("-" + std::string(name(strategies[i])), ".csv"));
+    std::printf("wrote %s (uniform, cosine, light, mixture at %d spp), %s, %s, ...\n",
+                out.c_str(), figure_spp, cli.sibling("-reference").c_str(),
+                cli.sibling("-" + std::string(name(strategies[0])), ".csv").c_str());
 
     std::printf("winner: %s sampling: in equal time its RMSE is %.1fx lower than %s (next best) and %.1fx lower "
                 "than uniform; it reaches RMSE %.3g %.1fx sooner than %s\n",

@@ -26,6 +26,9 @@ inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** arg
                    "raise or lower an input limit, NAME=N (repeatable): file_bytes, yaml_nodes, triangles, "
                    "vertices, patches, pixels, samples, threads_per_core (scenes/README.md lists the defaults)")
         ->allow_extra_args(false);
+  // --help shows every default, also of options added without capture_default_str().
+  for (CLI::Option* o : app.get_options())
+    if (o->get_default_str().empty() && o->get_expected_min() > 0) o->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

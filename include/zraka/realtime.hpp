@@ -12,7 +12,7 @@
 // and its benchmark render the same ones; they need no OpenCL.
 // Link with OpenCL::OpenCL (a test's first line: // links: OpenCL).
 #include <zraka/cl.hpp>
-#include <zraka/cornell.hpp>
+#include <zraka/named_scenes.hpp>
 #include <zraka/error.hpp>
 #include <zraka/gpu_scene.hpp>
 #include <zraka/image.hpp>
@@ -27,37 +27,9 @@
 
 namespace zraka {
 
-// [listing spheres-scene]
-// Diffuse spheres on a checkered ground sphere under a blue sky, lit by a small glowing sphere:
-// only spheres and Lambertian materials, the scene the specialised kernel is fastest on.
-inline scene spheres_scene() {
-  scene sc;
-  const int ground = sc.add_material(material::lambertian(texture::checker(rgb(0.75f), rgb(0.3f), 0.5)));
-  const int red = sc.add_material(material::lambertian(rgb(0.7f, 0.15f, 0.1f)));
-  const int blue = sc.add_material(material::lambertian(rgb(0.15f, 0.3f, 0.7f)));
-  const int white = sc.add_material(material::lambertian(rgb(0.8f)));
-  const int lamp = sc.add_material(material::emitter(rgb(12.0f, 10.0f, 7.0f)));
-  sc.add(sphere{{0, -1000, 0}, 1000}, ground);
-  sc.add(sphere{{-1.1, 0.5, 0}, 0.5}, red);
-  sc.add(sphere{{0, 0.7, -0.6}, 0.7}, white);
-  sc.add(sphere{{1.1, 0.45, 0.3}, 0.45}, blue);
-  sc.add(sphere{{1.5, 2.6, 1.5}, 0.5}, lamp);
-  sc.background = rgb(0.35f, 0.45f, 0.6f);
-  sc.camera.position = {0, 1.4, 4.2};
-  sc.camera.look_at = {0, 0.5, 0};
-  sc.camera.vfov_degrees = 40;
-  return sc;
-}
-// [end]
-
-// The chapter's scenes by name: spheres, or a Cornell box variant (cornell = the glass one).
-inline scene realtime_scene(const std::string& name) {
-  if (name == "spheres") return spheres_scene();
-  if (name == "cornell") return cornell_box<double>(cornell_variant::glass);
-  if (name.rfind("cornell-", 0) == 0) return cornell_box<double>(parse_cornell_variant(name.substr(8)));
-  throw error("unknown scene '" + name + "' (spheres, cornell, cornell-boxes, cornell-glass, "
-              "cornell-spheres, or a .yaml scene file)");
-}
+// The chapter's in-code scenes come from the registry of named scenes (named_scenes.hpp), so
+// that `--scene cornell` is the same scene here as in every other program.
+inline scene realtime_scene(const std::string& name) { return builtin_scene(name); }
 }  // namespace zraka
 
 #if __has_include(<CL/cl.h>)

@@ -1,0 +1,199 @@
+#pragma once
+// The options every chapter program shares, in one struct (issue 12), in the spirit of RTIOW's
+// camera: main sets the defaults it wants, says which options it takes, adds its own to `app`,
+// and parses; what comes back is checked, so main shows only its chapter's new idea.
+//
+//   program_options opt{"Chapter 1.2: ...", take::size | take::out};
+//   opt.width = 400, opt.height = 300, opt.out = "sphere.png";   // defaults, shown by --help
+//   opt.app.add_option("--radius", radius, "...");               // the chapter's own
+//   if (const auto done = opt.parse(argc, argv)) return *done;   // --help, or error: ... exit 1
+//
+// The convention (book/README.md): --out is a full file name whose extension picks the format
+// (.png, .ppm, .pfm); a bare file name run from inside the checkout lands in build/out/, never
+// loose in the repository (a name with a folder is taken as given); --scene is a name from named_scenes.hpp or a .yaml path; --help
+// shows every default; a bad value is "error: ..." and exit code 1.
+#include <zraka/atomic_file.hpp>
+#include <zraka/cli.hpp>
+#include <zraka/error.hpp>
+#include <zraka/image.hpp>
+#include <zraka/render.hpp>
+#include <zraka/resources.hpp>
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace zraka {
+
+// Which shared options a program takes (combine with |).
+enum class take : unsigned {
+  none = 0, size = 1, spp = 2, depth = 4, seed = 8, threads = 16, out = 32, scene = 64,
+  image = 1 | 2 | 8 | 16 | 32,  // a rendering program: size, spp, seed, threads, out
+};
+constexpr take operator|(take a, take b) { return take(unsigned(a) | unsigned(b)); }
+constexpr bool has(take set, take one) { return (unsigned(set) & unsigned(one)) == unsigned(one); }
+
+// Where a relative output name goes: <checkout>/build/out/ when the program runs inside the
+// source checkout (outside its build folders), else the current folder ("" returned).
+inline std::filesystem::path output_folder() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path root = fs::weakly_canonical(resource_root(), ec);
+  if (ec || !fs::exists(root / "CMakeLists.txt", ec) || !fs::exists(root / "include" / "zraka", ec)) return {};
+  const fs::path here = fs::weakly_canonical(fs::current_path(ec), ec);
+  if (ec) return {};
+  const fs::path rel = here.lexically_relative(root);
+  if (rel.empty() || *rel.begin() == "..") return {};  // outside the checkout
+  if (rel != "." && rel.begin()->string().starts_with("build")) return {};  // build/, build-debug/...
+  return root / "build" / "out";
+}
+
+// The file an output name stands for: a bare file name ("x.png") goes to output_folder(), which
+// is made if needed; a name with a folder ("renders/x.png", "/tmp/x.png") is taken as given.
+inline std::filesystem::path output_file(const std::filesystem::path& name) {
+  if (name.has_parent_path()) return name;
+  const std::filesystem::path dir = output_folder();
+  if (dir.empty()) return name;
+  std::error_code ec;  // a folder that cannot be made shows up as a clear error when writing
+  std::filesystem::create_directories(dir, ec);
+  // say it short: build/out/x.png when run from the checkout's top
+  const auto rel = (dir / name).lexically_relative(std::filesystem::current_path(ec));
+  return ec || rel.empty() ? dir / name : rel;
+}
+
+// An input that an earlier run wrote (e.g. --reference ref.pfm): as given when it exists there,
+// else where output_file put it; a missing file is then reported under the name as given.
+inline std::filesystem::path input_file(const std::filesystem::path& name) {
+  std::error_code ec;
+  if (name.has_parent_path() || std::filesystem::exists(name, ec)) return name;
+  const std::filesystem::path dir = output_folder();
+  if (!dir.empty() && std::filesystem::exists(dir / name, ec)) return output_file(name);
+  return name;
+}
+
+// The folder for programs that write several files (--out-dir): output_folder(), or ".".
+inline std::string output_dir() {
+  const std::filesystem::path f = output_file("f");
+  return f.has_parent_path() ? f.parent_path().string() : ".";
+}
+
+struct program_options {
+  // Defaults: set them before parse(); --help shows them.
+  int width = 400, height = 300;
+  int spp = 1;
+  int depth = 8, min_depth = 1, max_depth = 64;  // depth must be in min_depth..max_depth
+  std::uint64_t seed = 1;
+  int threads = 0;  // 0 = all cores
+  std::string out;  // a full file name; its extension picks the format
+  std::vector<std::string> out_types{".png", ".ppm", ".pfm"};
+  std::string scene = "cornell";  // a name from named_scenes.hpp or a .yaml path
+  std::string scene_names;        // for --help: named_scene_list() (this header needs no scene types)
+  // true: size, spp, depth and seed default to the scene's own settings (apply_to); --help says so.
+  bool scene_settings = false;
+
+  CLI::App app;
+
+  program_options(std::string description, take options) : app(std::move(description)), taken_(options) {
+    app.option_defaults()->always_capture_default();  // --help shows every default, the chapter's own too
+  }
+
+  // Adds the shared options, parses, checks. Returns the exit code when main should stop now.
+  std::optional<int> parse(int argc, char** argv) {
+    add_shared();
+    if (const auto done = parse_command_line(app, argc, argv)) return done;
+    try {
+      if (has(taken_, take::threads)) threads = resolve_threads(threads);
+      if (has(taken_, take::out)) {
+        check_output_name(out);
+        const std::string ext = std::filesystem::path(out).extension().string();
+        bool known = false;
+        std::string list;
+        for (const std::string& t : out_types) known |= ext == t, list += (list.empty() ? "" : ", ") + t;
+        if (!known) throw error("--out " + out + ": unknown image type '" + ext + "' (use " + list + ")");
+        out = output_file(out).string();
+      }
+      if (!scene_settings) check();
+    } catch (const error& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 1;
+    }
+    return std::nullopt;
+  }
+
+  // The render options that --threads asks for.
+  render_options render() const {
+    render_options ro;
+    ro.threads = threads;
+    return ro;
+  }
+
+  // A file next to --out for a program that writes several: sibling("-reference") of
+  // "aa.png" is "aa-reference.png", sibling("-regular", ".csv") is "aa-regular.csv".
+  std::string sibling(const std::string& suffix, const std::string& extension = "") const {
+    const std::filesystem::path o(out);
+    return ((o.parent_path() / o.stem()).string() + suffix) + (extension.empty() ? o.extension().string() : extension);
+  }
+
+  // Was this option on the command line (e.g. given("--spp"))?
+  bool given(const std::string& name) const { return app.count(name) > 0; }
+
+  // For scene_settings programs: the scene's settings, overridden by what the command line gave,
+  // then checked; the options' fields hold the result. Throws zraka::error.
+  template <class Settings> void apply_to(Settings& s) {
+    auto take_over = [&](take t, const char* name, auto& field, auto& mine) {
+      if (!has(taken_, t)) return;
+      if (given(name)) field = mine;
+      else mine = field;
+    };
+    take_over(take::size, "--width", s.width, width);
+    take_over(take::size, "--height", s.height, height);
+    take_over(take::spp, "--spp", s.spp, spp);
+    take_over(take::depth, "--depth", s.max_depth, depth);
+    take_over(take::seed, "--seed", s.seed, seed);
+    check();
+  }
+
+ private:
+  take taken_;
+
+  void check() const {
+    if (has(taken_, take::size)) image::check_size(width, height);
+    if (has(taken_, take::spp) && (spp < 1 || spp > 65536))
+      throw error("--spp must be in 1..65536, got " + std::to_string(spp));
+    if (has(taken_, take::depth) && (depth < min_depth || depth > max_depth))
+      throw error("--depth must be in " + std::to_string(min_depth) + ".." + std::to_string(max_depth) +
+                  ", got " + std::to_string(depth));
+  }
+
+  void add_shared() {
+    auto dflt = [&](CLI::Option* o) {
+      if (scene_settings) o->default_str("the scene's");
+    };
+    if (has(taken_, take::scene))
+      app.add_option("--scene", scene, "a scene name (" + (scene_names.empty() ? "see named_scenes.hpp" : scene_names) +
+                                           ") or a .yaml scene file")
+        ;
+    if (has(taken_, take::size)) {
+      dflt(app.add_option("--width", width, "image width in pixels"));
+      dflt(app.add_option("--height", height, "image height in pixels"));
+    }
+    if (has(taken_, take::spp)) dflt(app.add_option("--spp", spp, "samples per pixel"));
+    if (has(taken_, take::depth))
+      dflt(app.add_option("--depth", depth, "maximum bounces (" + std::to_string(min_depth) + ".." +
+                                                std::to_string(max_depth) + ")"));
+    if (has(taken_, take::seed)) dflt(app.add_option("--seed", seed, "random seed (same seed, same result)"));
+    if (has(taken_, take::threads))
+      app.add_option("--threads", threads, "threads (0 = all cores)");
+    if (has(taken_, take::out)) {
+      std::string types;
+      for (const std::string& t : out_types) types += (types.empty() ? "" : ", ") + t;
+      app.add_option("--out", out, "output file; its extension (" + types +
+                                       ") picks the format; a bare name run inside the checkout goes to build/out/");
+    }
+  }
+};
+
+}  // namespace zraka

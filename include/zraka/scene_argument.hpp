@@ -1,0 +1,35 @@
+#pragma once
+// What a program's --scene names: a name from the registry (named_scenes.hpp) or a path to a
+// .yaml scene file. Every program that takes a scene reads it through load_scene_argument, so
+// `--scene cornell` is one scene everywhere. Needs yaml-cpp (scene_file.hpp).
+#include <zraka/error.hpp>
+#include <zraka/named_scenes.hpp>
+#include <zraka/resources.hpp>
+#include <zraka/scene_file.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace zraka {
+
+inline bool is_scene_path(const std::string& arg) {
+  return arg.ends_with(".yaml") || arg.ends_with(".yml") || arg.find('/') != std::string::npos;
+}
+
+// A path is looked for as given, then under the resource root; a typo is a missing file named
+// as the user wrote it, not a resource-root problem.
+inline loaded_scene load_scene_argument(const std::string& arg) {
+  if (is_scene_path(arg)) {
+    const std::filesystem::path p(arg);
+    std::error_code ec;
+    if (!std::filesystem::exists(p, ec) && (p.is_absolute() || !std::filesystem::exists(resource_root() / p, ec)))
+      throw error("scene file not found: " + arg);
+    return load_scene_file(p);
+  }
+  const named_scene* n = find_named_scene(arg);
+  if (!n) throw error("unknown scene '" + arg + "' (" + named_scene_list() + ", or a .yaml file)");
+  if (n->build) return loaded_scene{n->build(), {}, {}};
+  return load_scene_file("scenes/" + std::string(n->name) + ".yaml");
+}
+
+}  // namespace zraka
