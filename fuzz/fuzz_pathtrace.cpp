@@ -24,7 +24,9 @@
 #include <zraka/lights.hpp>
 #include <zraka/path.hpp>
 #include <zraka/pixel_sampling.hpp>
+#include <zraka/program_options.hpp>
 #include <zraka/progressive.hpp>
+#include <zraka/scene_argument.hpp>
 #include <zraka/scene_file.hpp>
 
 #include <CLI/CLI.hpp>
