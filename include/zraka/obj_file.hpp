@@ -132,9 +132,14 @@ class obj_reader {
     } else if (key == "o" || key == "g" || key == "s" || key == "usemtl" || key == "mtllib") {
       // names, smoothing groups and materials: nothing to build
     } else if (key == "l" || key == "p") {
-      fail("'" + std::string(key) + "' (a line or a point) has no surface; only faces (f) are rendered");
+      // (appended piece by piece: GCC 12's -Wrestrict misfires on "literal" + std::string at -O3)
+      std::string msg = "'";
+      msg.append(key).append("' (a line or a point) has no surface; only faces (f) are rendered");
+      fail(msg);
     } else {
-      fail("unknown statement '" + std::string(key) + "' (expected v, vn, vt, f, o, g, s, usemtl or mtllib)");
+      std::string msg = "unknown statement '";
+      msg.append(key).append("' (expected v, vn, vt, f, o, g, s, usemtl or mtllib)");
+      fail(msg);
     }
   }
 
