@@ -56,7 +56,6 @@ template <class T> class light_set_t {
 
   explicit light_set_t(const scene_t<T>& sc, light_selection sel = light_selection::power)
       : sc_(sc), selection_(sel) {
-    for (auto& v : index_) v.clear();
     index_[kind(shape_kind::sphere)].assign(sc.spheres.size(), -1);
     index_[kind(shape_kind::quad)].assign(sc.quads.size(), -1);
     index_[kind(shape_kind::plane)].assign(sc.planes.size(), -1);
