@@ -156,23 +156,41 @@ TEST_CASE("bdpt: every strategy alone (unweighted) converges to the same image o
   }
 }
 
-TEST_CASE("bdpt: the strategies' weighted images sum to the image; NaN/inf counted, not hidden") {
+TEST_CASE("bdpt: the strategies' weighted images sum to the image (power and balance); NaN/inf counted, not hidden") {
   const scene sc = small(cornell_box<double>(cornell_variant::glass), 20, 16);
-  bdpt_options o;
-  o.max_depth = 3;  // path lengths 1..4: every strategy is in the grid
-  o.strategy_length = 4;
-  o.threads = 2;
-  const auto r = render_bdpt(sc, 8, 4, o);
-  REQUIRE(r.strategies.size() == std::size_t(strategy_count(4)));
-  CHECK(r.stats.nonfinite == 0);
-  double worst = 0;
-  for (std::size_t i = 0; i < r.img.pixels.size(); ++i) {
-    vec3 sum(0);
-    for (const image& s : r.strategies) sum += vec3(s.pixels[i]);
-    const vec3 d = glm::abs(sum - vec3(r.img.pixels[i]));
-    worst = std::max(worst, max_component(d) / (1e-3 + max_component(vec3(r.img.pixels[i]))));
+  for (const mis_heuristic hh : {mis_heuristic::power, mis_heuristic::balance}) {
+    INFO((hh == mis_heuristic::power ? "power" : "balance"));
+    bdpt_options o;
+    o.max_depth = 3;  // path lengths 1..4: every strategy is in the grid
+    o.strategy_length = 4;
+    o.threads = 2;
+    o.heuristic = hh;
+    const auto r = render_bdpt(sc, 8, 4, o);
+    REQUIRE(r.strategies.size() == std::size_t(strategy_count(4)));
+    CHECK(r.stats.nonfinite == 0);
+    double worst = 0;
+    for (std::size_t i = 0; i < r.img.pixels.size(); ++i) {
+      vec3 sum(0);
+      for (const image& s : r.strategies) sum += vec3(s.pixels[i]);
+      const vec3 d = glm::abs(sum - vec3(r.img.pixels[i]));
+      worst = std::max(worst, max_component(d) / (1e-3 + max_component(vec3(r.img.pixels[i]))));
+    }
+    CHECK(worst < 1e-4);
   }
-  CHECK(worst < 1e-4);
+}
+
+TEST_CASE("bdpt: the balance heuristic agrees with mis too") {
+  const scene sc = small(cornell_box<double>(cornell_variant::glass), 16, 16);
+  bdpt_options o;
+  o.max_depth = 5;
+  o.threads = 2;
+  o.heuristic = mis_heuristic::balance;
+  const region_stats b = batches(8, [&](std::uint64_t seed) { return render_b(sc, 12, seed, o); });
+  const region_stats m = batches(8, [&](std::uint64_t seed) { return render_mis(sc, 24, seed + 1000, 5); });
+  std::string report;
+  const int bad = disagreements(b, m, 5, report);
+  INFO(report);
+  CHECK(bad == 0);
 }
 
 TEST_CASE("bdpt: --seed gives the same image for 1 and 2 threads, any band size") {

@@ -153,6 +153,7 @@ template <class T> class bdpt_t {
  private:
   void add(sample_result& out, int s, int t, const rgb& v, int px, int py) const {
     if (v == rgb(0)) return;
+    if (opt_.only_s >= 0 && (s != opt_.only_s || t != opt_.only_t)) return;
     if (!is_finite(v)) {
       ++out.nonfinite;
       return;
@@ -329,10 +330,11 @@ template <class T> class bdpt_t {
       light_of_pt = lights_.index_of(pt.object);
       if (light_of_pt < 0) return T(1);  // no light sampler can start there
     }
-    // Copies of the densities (small: at most max_depth + 2 vertices a side).
-    T cf[64], cr[64], lf[64], lr[64];
-    bool cd[64], ld[64];
-    if (t > 64 || s > 64) throw error("bdpt: paths longer than 64 vertices");
+    // Copies of the densities (at most max_depth + 2 vertices a side), kept between calls.
+    cf_.resize(std::size_t(t)), cr_.resize(std::size_t(t)), cd_.resize(std::size_t(t));
+    lf_.resize(std::size_t(s)), lr_.resize(std::size_t(s)), ld_.resize(std::size_t(s));
+    T* cf = cf_.data(); T* cr = cr_.data(); T* lf = lf_.data(); T* lr = lr_.data();
+    char* cd = cd_.data(); char* ld = ld_.data();
     for (int i = 0; i < t; ++i) {
       cf[i] = camera_[std::size_t(i)].pdf_fwd, cr[i] = camera_[std::size_t(i)].pdf_rev, cd[i] = camera_[std::size_t(i)].delta;
     }
@@ -386,6 +388,8 @@ template <class T> class bdpt_t {
   path_options popt_;
   // The subpaths of the sample being made (one bdpt_t per thread: see render_bdpt).
   mutable std::vector<vertex> camera_, light_;
+  mutable std::vector<T> cf_, cr_, lf_, lr_;  // mis_weight's copies of the densities
+  mutable std::vector<char> cd_, ld_;
 };
 
 struct bdpt_render_t {
