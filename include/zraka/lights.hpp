@@ -44,6 +44,25 @@ template <class T> struct light_sample_t {
   int light = -1;         // index in the light set
 };
 
+// ---------------------------------------------------------------- emission sampling (book 6.2)
+// Light leaving the lights, for renderers that start paths there (bidirectional path tracing,
+// photon mapping): a point on a light chosen by power, and a direction it leaves in. The
+// position density is per unit area (times the choice of the light); the direction density is
+// per steradian, cosine-weighted from the emitting face (from either face, each with
+// probability 1/2, when two-sided). A point light has a delta position (pdf_position is then
+// the probability of choosing it) and leaves uniformly over the sphere.
+template <class T> struct emission_sample_t {
+  vec3_t<T> point{T(0)};
+  vec3_t<T> normal{T(0)};     // unit outward normal at point; zero for a point light
+  vec3_t<T> p_error{T(0)};    // bound on the error of point
+  vec3_t<T> direction{T(0)};  // unit, leaving the light
+  rgb Le{0};                  // radiance along direction (a point light: its intensity I)
+  T pdf_position = T(0);      // per unit area, times the choice of the light
+  T pdf_direction = T(0);     // per steradian
+  bool delta_position = false;  // a point light
+  int light = -1;
+};
+
 template <class T> class light_set_t {
  public:
   struct light {
@@ -206,6 +225,75 @@ template <class T> class light_set_t {
     return out;
   }
 
+
+  // ------------------------------------------------------------ emission sampling (book 6.2)
+  // [listing sample-emission]
+  // One light chosen by u_select (as sample() chooses), a point on it by u_pos (uniform in
+  // area; a sphere's too), a direction leaving it by u_dir.
+  std::optional<emission_sample_t<T>> sample_emission(T u_select, const vec2_t<T>& u_pos,
+                                                      const vec2_t<T>& u_dir) const {
+    if (lights_.empty()) return std::nullopt;
+    const double x = double(clamp_unit(u_select)) * total_;
+    const auto it = std::upper_bound(cdf_.begin() + 1, cdf_.end(), x);
+    const int i = std::min(int(it - cdf_.begin()) - 1, int(lights_.size()) - 1);
+    const light& l = lights_[std::size_t(i)];
+    emission_sample_t<T> e;
+    e.light = i;
+    if (l.point >= 0) {  // a delta in position, uniform over the sphere of directions
+      const auto& pl = sc_.point_lights[std::size_t(l.point)];
+      e.point = pl.position;
+      e.direction = sample_uniform_sphere(u_dir);
+      e.Le = pl.intensity;
+      e.pdf_position = selection_pdf(i);
+      e.pdf_direction = uniform_sphere_pdf<T>();
+      e.delta_position = true;
+      return e;
+    }
+    const auto sp = emission_point(l, u_pos);
+    if (!sp) return std::nullopt;
+    e.point = sp->p;
+    e.normal = sp->normal;
+    e.p_error = sp->p_error;
+    const material& m = sc_.material_of(l.object);
+    // Two-sided: u_dir.x picks the face (and is stretched back to [0,1) on it).
+    vec2_t<T> u = u_dir;
+    vec3_t<T> n = sp->normal;
+    if (m.two_sided) {
+      const T ux = clamp_unit(u.x) * T(2);
+      if (ux >= T(1)) n = -n;
+      u.x = ux >= T(1) ? ux - T(1) : ux;
+    }
+    e.direction = cosine_hemisphere_t<T>(n).sample(u);
+    e.pdf_position = selection_pdf(i) / l.area;
+    e.pdf_direction = pdf_emission_direction(i, e.normal, e.direction);
+    e.Le = emitted_towards(m, e.normal, e.direction);
+    if (!(e.pdf_position > T(0)) || !(e.pdf_direction > T(0)) || !std::isfinite(e.pdf_position)) return std::nullopt;
+    return e;
+  }
+  // [end]
+
+  // The density per unit area (times the choice) with which sample_emission() picks a point on
+  // light i; for a point light, the probability of choosing it.
+  T pdf_emission_position(int i) const {
+    const light& l = lights_[std::size_t(i)];
+    return l.point >= 0 ? selection_pdf(i) : selection_pdf(i) / l.area;
+  }
+  // The density per steradian of leaving light i along w from a point with outward normal n.
+  T pdf_emission_direction(int i, const vec3_t<T>& n, const vec3_t<T>& w) const {
+    const light& l = lights_[std::size_t(i)];
+    if (l.point >= 0) return uniform_sphere_pdf<T>();
+    const T c = glm::dot(n, w);
+    if (sc_.material_of(l.object).two_sided) return std::abs(c) / (T(2) * pi<T>);
+    return c > T(0) ? c / pi<T> : T(0);
+  }
+  // The radiance a glowing material sends along w from a point with outward normal n.
+  static rgb emitted_towards(const material& m, const vec3_t<T>& n, const vec3_t<T>& w) {
+    hit_t<T> h;
+    h.normal = n;
+    h.set_face(-w);  // as seen by a ray arriving along -w
+    return emitted(m, h);
+  }
+
  private:
   static std::size_t kind(shape_kind k) { return std::size_t(k); }
   static double mean(const rgb& c) { return (double(c.x) + double(c.y) + double(c.z)) / 3.0; }
@@ -257,6 +345,16 @@ template <class T> class light_set_t {
                   " glows with a negative or non-finite radiance, or on a shape of infinite area");
     index_[kind(o.kind)][std::size_t(o.index)] = int(lights_.size());
     lights_.push_back(l);
+  }
+
+  // A point uniform in area on light l: a sphere's over its whole surface (emission sampling).
+  std::optional<surface_point_t<T>> emission_point(const light& l, const vec2_t<T>& u) const {
+    if (l.object.kind != shape_kind::sphere) return sample_surface(l, u);
+    const sphere_t<T>& sp = sc_.spheres[std::size_t(l.object.index)].shape;
+    const vec3_t<T> n = sample_uniform_sphere(u);
+    const vec3_t<T> on = sp.radius * n;
+    const vec3_t<T> p = sp.center + on;
+    return surface_point_t<T>{p, n, gamma<T>(6) * (glm::abs(on) + glm::abs(p))};
   }
 
   // A point uniform in area on light l (not a sphere, not a point light).

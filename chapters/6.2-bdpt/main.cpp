@@ -1,0 +1,224 @@
+// Chapter 6.2 — bidirectional path tracing (Lafortune and Willems 1993, Veach and Guibas 1994;
+// erratum E2). A camera subpath and a light subpath per sample, joined in every way (s, t) and
+// weighted by multiple importance sampling (include/zraka/bdpt.hpp). The program renders one
+// scene with BDPT and with the path tracer of chapter 2.3 (`mis`), at 1, 2, 4, ... samples per
+// pixel, and prints each one's error against run time against a reference: a long `mis` render
+// (--ref-spp samples in two halves with seeds of their own, whose difference measures the
+// reference's own noise, taken out of the errors), kept in two PFM files next to --out and read
+// back on the next run with the same scene, size, depth and reference samples. From the largest run, MSE x
+// seconds is each method's cost, and the RMSE at equal time follows.
+// --strategies N also writes the weighted image of every strategy of path length 1..N as a grid
+// (row k = path length, column s = light vertices), so a student sees which strategy carries
+// which light.
+#include <zraka/bdpt.hpp>
+#include <zraka/convergence.hpp>
+#include <zraka/error.hpp>
+#include <zraka/image_error.hpp>
+#include <zraka/image_io.hpp>
+#include <zraka/input_file.hpp>
+#include <zraka/path.hpp>
+#include <zraka/program_options.hpp>
+#include <zraka/render.hpp>
+#include <zraka/scene_argument.hpp>
+#include <zraka/scene_query.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+using namespace zraka;
+
+namespace {
+
+// [listing mis-render]
+// The path tracer of chapter 2.3, its camera rays jittered over the pixel as BDPT's are.
+image render_mis(const scene& sc, int spp, std::uint64_t seed, const path_options& po, const render_options& ro,
+                 render_stats& st) {
+  const path_tracer pt(sc, po);
+  const auto cam = sc.prepared_camera();
+  const int W = sc.settings.width, H = sc.settings.height;
+  image img(W, H);
+  st = render(img, spp, seed, [&](sample_context& c) {
+    const vec2 u = c.random.uniform2();
+    return pt(cam.generate((c.x + u.x) / W, (c.y + u.y) / H), c.random, c.rays);
+  }, ro);
+  return img;
+}
+// [end]
+
+// 8 hex digits of the FNV-1a hash of the scene file's bytes ("c++" for a scene built in C++).
+std::string scene_file_hash(const std::string& arg) {
+  std::filesystem::path p;
+  if (is_scene_path(arg)) p = std::filesystem::exists(arg) ? std::filesystem::path(arg) : resource_root() / arg;
+  else if (const named_scene* n = find_named_scene(arg); n && !n->build) p = resource_root() / "scenes" / (arg + ".yaml");
+  else return "c++";
+  std::uint32_t h = 2166136261u;
+  for (const char c : read_input_file(p)) h = (h ^ std::uint8_t(c)) * 16777619u;
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%08x", h);
+  return buf;
+}
+
+// Row k - 1 holds path length k; column s the strategy (s, k + 1 - s); gaps grey.
+image strategy_grid(const std::vector<image>& strategies, int K, int W, int H) {
+  const int gap = 2;
+  image grid(K * W + (K - 1) * gap + W + gap, K * H + (K - 1) * gap, rgb(0.2f));
+  for (int k = 1; k <= K; ++k)
+    for (int s = 0; s <= k; ++s) {
+      const image& im = strategies[std::size_t(strategy_slot(s, k + 1 - s))];
+      for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) grid.at(s * (W + gap) + x, (k - 1) * (H + gap) + y) = im.at(x, y);
+    }
+  return grid;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  program_options cli{"Chapter 6.2: bidirectional path tracing against path tracing with MIS",
+                      take::image | take::scene | take::depth};
+  cli.scene_names = named_scene_list();
+  cli.scene = "caustic-box", cli.out = "bdpt.png";
+  cli.width = 48, cli.height = 48, cli.spp = 8, cli.depth = 8;
+  int ref_spp = 256, strategies = 0;
+  std::string heuristic = "power";
+  cli.app.add_option("--ref-spp", ref_spp, "samples per pixel of the reference (mis, seed + 1000; cached as PFM)");
+  cli.app.add_option("--strategies", strategies, "write the weighted image of every strategy of path length 1..N as a grid");
+  cli.app.add_option("--heuristic", heuristic, "MIS over the strategies: power or balance");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+
+  return guarded([&] {
+    if (ref_spp < 2 || ref_spp > 65536 || ref_spp % 2) throw error("--ref-spp must be even, in 2..65536, got " + std::to_string(ref_spp));
+    if (cli.spp & (cli.spp - 1)) throw error("--spp must be a power of 2, got " + std::to_string(cli.spp));
+    if (heuristic != "power" && heuristic != "balance")
+      throw error("--heuristic must be power or balance, got '" + heuristic + "'");
+    if (strategies < 0 || strategies > cli.depth + 1)
+      throw error("--strategies must be from 0 to depth + 1 = " + std::to_string(cli.depth + 1));
+    scene sc = load_scene_argument(cli.scene).sc;
+    sc.settings.width = cli.width, sc.settings.height = cli.height;
+    sc.build_acceleration();
+    const int W = cli.width, H = cli.height;
+    const render_options ro = cli.render();
+    path_options po;
+    po.max_depth = cli.depth;
+    bdpt_options bo;
+    bo.max_depth = cli.depth;
+    bo.heuristic = heuristic == "power" ? mis_heuristic::power : mis_heuristic::balance;
+    bo.threads = ro.threads;
+    std::printf("scene %s, %dx%d, at most %d bounces; %s\n%s\n", cli.scene.c_str(), W, H, cli.depth,
+                describe_built(sc).c_str(), light_set(sc).describe().c_str());
+    std::uint64_t bad = 0;
+
+    // The reference: two halves of ref_spp / 2 samples with seeds of their own, read back when
+    // an earlier run made them for the same scene and settings. Their difference measures the
+    // reference's own noise: E|A - B|^2 = 4 MSE((A + B) / 2), which the RMSEs below subtract.
+    // The file names carry a hash of the scene file, so an edited scene is rendered again.
+    const std::string scene_tag = std::filesystem::path(cli.scene).stem().string() + "-" + scene_file_hash(cli.scene);
+    const std::string tag = "-reference-" + scene_tag + "-" + std::to_string(W) + "x" + std::to_string(H) + "-d" +
+                            std::to_string(cli.depth) + "-" + std::to_string(ref_spp) + "spp";
+    image half[2];
+    bool cached = true;
+    for (int i = 0; i < 2; ++i) {
+      const std::string name = cli.sibling(tag + (i ? "-b" : "-a"), ".pfm");
+      std::error_code ec;
+      if (std::filesystem::exists(name, ec)) {
+        half[i] = read_pfm(name);
+        check_same_size(image(W, H), half[i]);
+        continue;
+      }
+      cached = false;
+      render_stats rs;
+      half[i] = render_mis(sc, std::max(1, ref_spp / 2), cli.seed + 1000 + std::uint64_t(i), po, ro, rs);
+      bad += rs.nonfinite;
+      write_image(half[i], name);
+      std::printf("reference half %c: mis, %d spp, seed %llu, %.2f s, %llu NaN/inf samples\n", i ? 'b' : 'a',
+                  std::max(1, ref_spp / 2), static_cast<unsigned long long>(cli.seed + 1000 + std::uint64_t(i)),
+                  rs.seconds, static_cast<unsigned long long>(rs.nonfinite));
+    }
+    image reference(W, H);
+    for (std::size_t i = 0; i < reference.pixels.size(); ++i) reference.pixels[i] = (half[0].pixels[i] + half[1].pixels[i]) * 0.5f;
+    const double ref_mse = rmse(half[0], half[1]) * rmse(half[0], half[1]) / 4;
+    const double ref_rel = relmse(half[0], half[1]) / 4;
+    std::printf("reference: mis, %d spp in two halves, %s %s; its own RMSE %.5f, relMSE %.5f (subtracted below)\n",
+                ref_spp, cached ? "read from" : "cached in", cli.sibling(tag + "-{a,b}", ".pfm").c_str(),
+                std::sqrt(ref_mse), ref_rel);
+    // The errors against the truth, estimated: the reference's noise taken out of the squared
+    // error (for relMSE approximately: its weights use the reference). relMSE divides each
+    // pixel's squared error by ref^2 + 0.01, so fireflies in dark regions count and the noise at
+    // the edges of a directly seen light (the pixel's jitter, the same for both) counts less.
+    auto error_of = [&](const image& img) -> std::vector<double> {
+      const double e = rmse(img, reference);
+      return {std::sqrt(std::max(0.0, e * e - ref_mse)), std::max(0.0, relmse(img, reference) - ref_rel)};
+    };
+
+    // [listing error-against-time]
+    convergence_log log_b("bdpt on " + cli.scene, {"rmse", "relmse"}, "relmse", "spp");
+    convergence_log log_m("mis on " + cli.scene, {"rmse", "relmse"}, "relmse", "spp");
+    image last_b, last_m;
+    std::vector<image> grid_images;
+    for (int spp = 1; spp <= cli.spp; spp *= 2) {
+      bo.strategy_length = spp == cli.spp ? strategies : 0;
+      const bdpt_render_t b = render_bdpt(sc, spp, cli.seed, bo);
+      render_stats ms;
+      const image m = render_mis(sc, spp, cli.seed, po, ro, ms);
+      bad += b.stats.nonfinite + ms.nonfinite;
+      log_b.add(std::uint64_t(spp), b.stats.seconds, error_of(b.img));
+      log_m.add(std::uint64_t(spp), ms.seconds, error_of(m));
+      if (spp == cli.spp) last_b = b.img, last_m = m, grid_images = b.strategies;
+    }
+    // [end]
+
+    std::printf("\nerror against the reference, its own noise taken out [seconds]\n%6s %32s %32s\n", "spp",
+                "bdpt: rmse relmse", "mis: rmse relmse");
+    for (std::size_t i = 0; i < log_b.rows().size(); ++i) {
+      const auto& b = log_b.rows()[i];
+      const auto& m = log_m.rows()[i];
+      std::printf("%6llu %10.5f %10.5f [%6.3f s] %10.5f %10.5f [%6.3f s]\n", static_cast<unsigned long long>(b.n),
+                  b.values[0], b.values[1], b.seconds, m.values[0], m.values[1], m.seconds);
+    }
+    std::printf("bdpt: %s\nmis:  %s\n", log_b.slope_line().c_str(), log_m.slope_line().c_str());
+
+    // [listing equal-time]
+    // Equal time: relMSE ~ c / seconds for an unbiased estimator, c from the largest run.
+    const auto& rb = log_b.rows().back();
+    const auto& rm = log_m.rows().back();
+    const double cost_b = rb.values[1] * std::max(rb.seconds, 1e-6);
+    const double cost_m = rm.values[1] * std::max(rm.seconds, 1e-6);
+    const double T = std::max(rb.seconds, rm.seconds);
+    // [end]
+    if (cost_b > 0 && cost_m > 0)
+      std::printf("\nequal time (%.2f s): relMSE bdpt %.5f, mis %.5f: %s wins, %.2fx lower relMSE (%.2fx the time to "
+                  "the same error)\n",
+                  T, cost_b / T, cost_m / T, cost_b < cost_m ? "bdpt" : "mis",
+                  std::max(cost_b, cost_m) / std::min(cost_b, cost_m), std::max(cost_b, cost_m) / std::min(cost_b, cost_m));
+    else
+      std::printf("\nequal time: an error is below the reference's own noise; use a larger --ref-spp\n");
+
+    // Figure: bdpt | mis | reference at the largest spp.
+    const int gap = 2;
+    image fig(3 * W + 2 * gap, H, rgb(1));
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        fig.at(x, y) = last_b.at(x, y);
+        fig.at(W + gap + x, y) = last_m.at(x, y);
+        fig.at(2 * (W + gap) + x, y) = reference.at(x, y);
+      }
+    write_image(fig, cli.out);
+    log_b.write_csv(cli.sibling("-bdpt", ".csv"));
+    log_m.write_csv(cli.sibling("-mis", ".csv"));
+    std::printf("wrote %s (bdpt, mis at %d spp, reference), %s, %s\n", cli.out.c_str(), cli.spp,
+                cli.sibling("-bdpt", ".csv").c_str(), cli.sibling("-mis", ".csv").c_str());
+    if (strategies > 0) {
+      write_image(strategy_grid(grid_images, strategies, W, H), cli.sibling("-strategies"));
+      std::printf("wrote %s: row k = path length 1..%d, column s = 0..k light vertices (t = k + 1 - s); "
+                  "(1, 1) is left out (the camera path finds visible lights)\n",
+                  cli.sibling("-strategies").c_str(), strategies);
+    }
+    std::printf("summary: %s %dx%d, %d spp: relMSE bdpt %.5f in %.2f s, mis %.5f in %.2f s; %llu NaN/inf samples\n",
+                cli.scene.c_str(), W, H, cli.spp, rb.values[1], rb.seconds, rm.values[1], rm.seconds,
+                static_cast<unsigned long long>(bad));
+    return 0;
+  });
+}
