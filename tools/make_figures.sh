@@ -57,6 +57,9 @@ if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
 else
   echo "make_figures: no matplotlib venv, skipping the 5.1 and 5.3 plots" >&2
 fi
+# --- 5.4
+"$bin/microfacets" --width 480 --height 154 --spp 32 --ref-spp 64 --albedo-samples 0 --out 5.4-balls.png >/dev/null \
+  && cp 5.4-balls-reference.png "$fig/5.4-material-balls.png"
 # --- 5.2
 "$bin/bvh" --divs 32 --out 5.2-bvh-heat.png >/dev/null && cp 5.2-bvh-heat.png "$fig/"
 # --- assignments (book/assignments): the target images, made by the reference solutions
