@@ -129,7 +129,7 @@ TEST_CASE("scene registry: unknown types list the built-in and the registered na
         "mesh or bezier; registered: disk)");
   CHECK(parse_error("materials: {m: {type: glosy}}\nobjects: [{type: disk}]") ==
         "t.yaml:1:23: materials.m.type: unknown material type 'glosy' (expected lambertian, metal, dielectric, "
-        "emitter or phong; registered: glossy)");
+        "emitter, phong, rough_conductor or rough_dielectric; registered: glossy)");
   // Without registered types the list is the built-in one alone.
   CHECK(error_of([] { (void)parse_scene("objects: [{type: disk}]", "t.yaml"); }) ==
         "t.yaml:1:18: objects[0].type: unknown object type 'disk' (expected sphere, plane, triangle, quad, box, "

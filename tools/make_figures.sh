@@ -63,6 +63,9 @@ for s in caustic-box tiny-light; do
 done
 "$bin/bdpt" --scene ajar-door --width 64 --height 48 --spp 32 --ref-spp 2048 --threads 2 --strategies 4 --out 6.2-ajar-door.png >/dev/null
 cp 6.2-caustic-box.png 6.2-caustic-box-strategies.png 6.2-ajar-door.png 6.2-ajar-door-strategies.png 6.2-tiny-light.png "$fig/"
+# --- 5.4
+"$bin/microfacets" --width 480 --height 154 --spp 32 --ref-spp 64 --albedo-samples 0 --out 5.4-balls.png >/dev/null \
+  && cp 5.4-balls-reference.png "$fig/5.4-material-balls.png"
 # --- 5.2
 "$bin/bvh" --divs 32 --out 5.2-bvh-heat.png >/dev/null && cp 5.2-bvh-heat.png "$fig/"
 # --- assignments (book/assignments): the target images, made by the reference solutions

@@ -34,7 +34,6 @@ std::string scene_json(const scene& sc, int width, int height, int depth) {
   std::ostringstream o;
   o.precision(17);
   auto v3 = [&](const auto& v) { o << '[' << double(v.x) << ", " << double(v.y) << ", " << double(v.z) << ']'; };
-  const char* kinds[] = {"lambertian", "metal", "dielectric", "emitter", "phong"};
   o << "{\n  \"width\": " << width << ", \"height\": " << height << ", \"max_depth\": " << depth
     << ",\n  \"background\": ";
   v3(sc.background);
@@ -47,7 +46,7 @@ std::string scene_json(const scene& sc, int width, int height, int depth) {
   o << ", \"vfov\": " << sc.camera.vfov_degrees << "},\n  \"materials\": [";
   for (std::size_t i = 0; i < sc.materials.size(); ++i) {
     const material& m = sc.materials[i];
-    o << (i ? ",\n    " : "\n    ") << "{\"type\": \"" << kinds[int(m.kind)] << "\", \"albedo\": ";
+    o << (i ? ",\n    " : "\n    ") << "{\"type\": \"" << kind_name(m.kind) << "\", \"albedo\": ";
     v3(m.albedo.a);
     o << ", \"checker\": " << (m.albedo.type == texture::kind::checker ? "true" : "false")
       << ", \"fuzz\": " << m.fuzz << ", \"ior\": " << m.ior << ", \"radiance\": ";
@@ -143,6 +142,8 @@ int main(int argc, char** argv) {
       if (!sc.user_shapes.empty()) throw error("--export: a user shape ('" + sc.user_shapes[0].shape->name() + "') cannot be exported");
       for (const material& m : sc.materials)
         if (is_custom(m)) throw error("--export: a custom BSDF ('" + m.bsdf->name() + "') cannot be exported");
+        else if (is_microfacet(m))
+          throw error(std::string("--export: a ") + kind_name(m.kind) + " cannot be exported yet (tools/mitsuba_reference.py has no rough materials)");
       write_file_atomically(json, scene_json(sc, W, H, io.max_depth));
       std::printf("wrote %s (%zu spheres, %zu quads, %zu materials)\n", json.c_str(), sc.spheres.size(),
                   sc.quads.size(), sc.materials.size());

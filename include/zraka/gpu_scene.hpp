@@ -167,6 +167,10 @@ inline gpu_material to_gpu(const material& m) {
     case material_kind::dielectric: g.kind = gpu_dielectric; break;
     case material_kind::emitter: g.kind = gpu_emitter; break;
     case material_kind::phong: g.kind = gpu_phong; break;
+    case material_kind::rough_conductor:  // pack_scene refuses any an object uses; one no object
+    case material_kind::rough_dielectric:  // uses is packed as black, and never looked up
+      g.kind = gpu_lambertian;
+      return g;
   }
   if (m.kind == material_kind::phong) {  // brdf_at(): Lambert kd/pi plus the normalised lobe ks
     g.albedo_a = to_gpu(m.kd);
@@ -203,6 +207,9 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
     if (is_custom(m))
       throw error("realtime: material " + std::to_string(sc.material_index(o)) + " is a custom BSDF ('" +
                   m.bsdf->name() + "'), which the OpenCL kernel cannot run; render it with pathtrace");
+    if (is_microfacet(m))
+      throw error("realtime: material " + std::to_string(sc.material_index(o)) + " is a " + kind_name(m.kind) +
+                  " (a microfacet material), which the OpenCL kernel does not implement; render it with pathtrace");
   });
   const path_tracer_t<T> tracer(sc, opt);  // the CPU's own checks, and its lights
   const light_set_t<T>& lights = tracer.lights;

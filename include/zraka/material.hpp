@@ -15,6 +15,11 @@
 // total internal reflection; an IOR below 1 is a hollow, e.g. an air bubble in glass at
 // 1/1.5), emitter (an area light, black) and phong (kd, ks, shininess: the local model of book
 // 1.9 for the Whitted tracer, and its energy-normalised BRDF for path tracing).
+// Book 5.4 adds two microfacet kinds (microfacet.hpp; GGX, `roughness` is the GGX alpha as
+// Mitsuba's): rough_conductor (a metal by its complex index per channel, a preset, or an RGB F0
+// with Schlick) and rough_dielectric (rough glass, Walter et al. 2007). They have densities:
+// lights are sampled at them. fuzzy_metal stays as RTIOW's model, which is not a BRDF one can
+// evaluate; a rough conductor is the physically based metal.
 // Any material may also glow: `radiance` is emitted from the front face, or from both faces
 // when `two_sided` is set (book 2.3's furnace: a Lambertian sphere that glows inwards).
 // A material is data, so a scene file can describe it field by field; the one exception is
@@ -25,6 +30,8 @@
 #include <zraka/custom_bsdf.hpp>
 #include <zraka/error.hpp>
 #include <zraka/hit.hpp>
+#include <zraka/microfacet.hpp>
+#include <zraka/onb.hpp>
 #include <zraka/optics.hpp>
 #include <zraka/rng.hpp>
 #include <zraka/sampling.hpp>
@@ -37,7 +44,7 @@
 
 namespace zraka {
 
-enum class material_kind { lambertian, fuzzy_metal, dielectric, emitter, phong };
+enum class material_kind { lambertian, fuzzy_metal, dielectric, emitter, phong, rough_conductor, rough_dielectric };
 
 struct material {
   material_kind kind = material_kind::lambertian;
@@ -49,6 +56,8 @@ struct material {
   rgb kd{0.8f}, ks{0.2f};                      // phong
   double shininess = 32;                       // phong exponent p
   std::shared_ptr<const custom_bsdf> bsdf;     // set: a user-defined BSDF (custom_bsdf.hpp)
+  double roughness = 0.1;                      // rough_*: the GGX alpha (microfacet.hpp), (0, 1]
+  conductor_fresnel conductor;                 // rough_conductor: eta + i k per channel, or F0
 
   static material lambertian(rgb albedo) { return lambertian(texture::solid(albedo)); }
   static material lambertian(texture albedo) {
@@ -89,6 +98,32 @@ struct material {
     m.bsdf = std::move(f);
     return m;
   }
+  // Rough metal; roughness is the GGX alpha in (0, 1] (microfacet.hpp). A preset by name:
+  // rough_conductor(0.2, *find_metal("gold")); an RGB F0: conductor_fresnel::from_f0(...).
+  static material rough_conductor(double roughness, const conductor_fresnel& f) {
+    check_roughness(roughness, "rough_conductor");
+    material m;
+    m.kind = material_kind::rough_conductor;
+    m.roughness = roughness;
+    m.conductor = f;
+    return m;
+  }
+  // Rough glass; ior = n_inside / n_outside as for dielectric(), but not 1 (no interface to be
+  // rough: the light would pass straight on, a direction without a density).
+  static material rough_dielectric(double roughness, double ior) {
+    check_roughness(roughness, "rough_dielectric");
+    if (!(ior > 0) || !std::isfinite(ior) || ior == 1)
+      throw error("rough_dielectric: the index of refraction must be positive and not 1, got " + std::to_string(ior));
+    material m;
+    m.kind = material_kind::rough_dielectric;
+    m.roughness = roughness;
+    m.ior = ior;
+    return m;
+  }
+  static void check_roughness(double r, const char* kind) {
+    if (!(r > 0 && r <= 1))
+      throw error(std::string(kind) + ": roughness (the GGX alpha) must be in (0, 1], got " + std::to_string(r));
+  }
   static material phong(rgb kd, rgb ks, double shininess) {
     material m;
     m.kind = material_kind::phong;
@@ -105,9 +140,25 @@ inline bool is_specular(const material& m) {
   if (m.bsdf) return false;  // a custom BSDF has a density (custom_bsdf.hpp)
   return m.kind == material_kind::fuzzy_metal || m.kind == material_kind::dielectric;
 }
-// Does brdf_cos() give anything to sample lights with? (Lambert, Phong, custom BSDFs.)
+inline bool is_microfacet(const material& m) {
+  return !m.bsdf && (m.kind == material_kind::rough_conductor || m.kind == material_kind::rough_dielectric);
+}
+// Does brdf_cos() give anything to sample lights with? (Lambert, Phong, microfacets, custom.)
 inline bool has_density(const material& m) {
-  return m.bsdf || m.kind == material_kind::lambertian || m.kind == material_kind::phong;
+  return m.bsdf || m.kind == material_kind::lambertian || m.kind == material_kind::phong || is_microfacet(m);
+}
+// The material's name in messages: "rough_conductor".
+inline const char* kind_name(material_kind k) {
+  switch (k) {
+    case material_kind::lambertian: return "lambertian";
+    case material_kind::fuzzy_metal: return "metal";
+    case material_kind::dielectric: return "dielectric";
+    case material_kind::emitter: return "emitter";
+    case material_kind::phong: return "phong";
+    case material_kind::rough_conductor: return "rough_conductor";
+    case material_kind::rough_dielectric: return "rough_dielectric";
+  }
+  return "?";
 }
 inline bool is_custom(const material& m) { return bool(m.bsdf); }
 
@@ -145,6 +196,28 @@ template <class T> lambert_phong_brdf_t<T> brdf_at(const material& m, const hit_
   return f;
 }
 
+// The microfacet BSDFs of a hit work in the local frame of its facing normal (microfacet.hpp);
+// the glass's eta = eta_t / eta_i is the index across the surface over the one on wo's side.
+template <class T> rough_dielectric_t<T> rough_glass_at(const material& m, const hit_t<T>& h) {
+  return {ggx_t<T>(T(m.roughness)), T(1) / relative_ior(h.front_face, T(m.ior))};
+}
+template <class T>
+rgb microfacet_f_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const vec3_t<T>& wi) {
+  const onb_t<T> b(h.facing_normal());
+  const vec3_t<T> lo = b.to_local(wo), li = b.to_local(wi);
+  if (m.kind == material_kind::rough_conductor)
+    return rough_conductor_t<T>{ggx_t<T>(T(m.roughness)), m.conductor}.f(lo, li) * float(std::abs(li.z));
+  return rgb(float(rough_glass_at(m, h).f(lo, li) * std::abs(li.z)));
+}
+template <class T>
+T microfacet_pdf(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const vec3_t<T>& wi) {
+  const onb_t<T> b(h.facing_normal());
+  const vec3_t<T> lo = b.to_local(wo), li = b.to_local(wi);
+  if (m.kind == material_kind::rough_conductor)
+    return rough_conductor_t<T>{ggx_t<T>(T(m.roughness)), m.conductor}.pdf(lo, li);
+  return rough_glass_at(m, h).pdf(lo, li);
+}
+
 // [listing brdf-cos]
 template <class T>
 rgb brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const vec3_t<T>& wi) {
@@ -152,6 +225,7 @@ rgb brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const ve
     const vec3_t<T> n = h.facing_normal();
     return rgb(vec3_t<T>(m.bsdf->eval(frame_at(h), vec3(wo), vec3(wi))) * std::max(T(0), glm::dot(n, wi)));
   }
+  if (is_microfacet(m)) return microfacet_f_cos(m, h, wo, wi);  // glass: wi may be below
   if (m.kind != material_kind::lambertian && m.kind != material_kind::phong) return rgb(0);
   const vec3_t<T> n = h.facing_normal();
   return rgb(brdf_at(m, h).eval(wi, wo, n) * std::max(T(0), glm::dot(n, wi)));
@@ -161,6 +235,7 @@ rgb brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const ve
 template <class T>
 T scatter_pdf(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const vec3_t<T>& wi) {
   if (m.bsdf) return T(m.bsdf->pdf(frame_at(h), vec3(wo), vec3(wi)));
+  if (is_microfacet(m)) return microfacet_pdf(m, h, wo, wi);
   if (m.kind != material_kind::lambertian && m.kind != material_kind::phong) return T(0);
   return brdf_at(m, h).pdf(wi, wo, h.facing_normal());
 }
@@ -186,6 +261,15 @@ std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const
       const auto sm = f.sample(-d, n, vec2_t<T>(u));
       if (!sm) return std::nullopt;  // grazing: d along the surface, or rounding on the horizon
       return scatter_t<T>{sm->wi, rgb(sm->weight), sm->pdf, false};
+    }
+    if (is_microfacet(m)) {  // a visible GGX normal (u); the glass picks its lobe with u_lobe
+      const onb_t<T> b(n);
+      const vec3_t<T> wo = b.to_local(-d);
+      const auto sm = m.kind == material_kind::rough_conductor
+                          ? rough_conductor_t<T>{ggx_t<T>(T(m.roughness)), m.conductor}.sample(wo, vec2_t<T>(u))
+                          : rough_glass_at(m, h).sample(wo, vec2_t<T>(u), T(u_lobe));
+      if (!sm) return std::nullopt;  // sent below the surface by a facet: absorbed
+      return scatter_t<T>{b.to_world(sm->wi), sm->weight, sm->pdf, false};
     }
     // phong: Lambert + normalised Phong, sampled as their mixture (bxdf.hpp reuses u for the lobe)
     const auto sm = brdf_at(m, h).sample(-d, n, vec2_t<T>(u));
@@ -215,6 +299,8 @@ std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const
     case material_kind::lambertian:
     case material_kind::phong:
     case material_kind::emitter:
+    case material_kind::rough_conductor:
+    case material_kind::rough_dielectric:
       break;
   }
   return std::nullopt;

@@ -429,6 +429,21 @@ class scene_reader {
           r["ks"] = flow(m.ks);
           r["shininess"] = num(m.shininess);
           break;
+        case material_kind::rough_conductor:
+          r["type"] = "rough_conductor";
+          r["roughness"] = num(m.roughness);
+          if (m.conductor.schlick) {
+            r["f0"] = flow(m.conductor.f0);
+          } else {  // a preset resolves to its numbers
+            r["eta"] = flow(m.conductor.eta);
+            r["k"] = flow(m.conductor.k);
+          }
+          break;
+        case material_kind::rough_dielectric:
+          r["type"] = "rough_dielectric";
+          r["roughness"] = num(m.roughness);
+          r["ior"] = num(m.ior);
+          break;
       }
       r.SetStyle(YAML::EmitterStyle::Flow);
       resolved_["materials"][out_.material_names[i]] = r;
@@ -479,10 +494,55 @@ class scene_reader {
         m.shininess = number(n["shininess"], path + ".shininess");
         if (!(m.shininess > 0)) fail(n["shininess"], path + ".shininess", "must be positive");
       }
+    } else if (type == "rough_conductor") {
+      // [listing scene-rough-conductor]
+      // At most one of: metal (a preset of microfacet.hpp), eta and k (the complex index per
+      // channel), or f0 (the colour at normal incidence, Schlick); none: silver.
+      keys(n, path, {"type", "roughness", "metal", "eta", "k", "f0"});
+      m.kind = material_kind::rough_conductor;
+      m.roughness = roughness(n, path);
+      const int given = (n["metal"] ? 1 : 0) + (n["eta"] || n["k"] ? 1 : 0) + (n["f0"] ? 1 : 0);
+      if (given > 1) fail(n, path, "a rough_conductor takes one of: metal, eta and k, f0");
+      if (!given) {
+        m.conductor = *find_metal("silver");
+      } else if (n["metal"]) {
+        const std::string name = text(n["metal"], path + ".metal");
+        const auto f = find_metal(name);
+        if (!f) fail(n["metal"], path + ".metal", "unknown metal '" + name + "' (expected " + metal_names() + ")");
+        m.conductor = *f;
+      } else if (n["f0"]) {
+        const rgb f0 = colour(n["f0"], path + ".f0");
+        if (max_component(f0) > 1) fail(n["f0"], path + ".f0", "a reflectance must be at most 1");
+        m.conductor = conductor_fresnel::from_f0(f0);
+      } else {
+        const rgb eta = colour(required(n, "eta", path), path + ".eta");
+        const rgb k = colour(required(n, "k", path), path + ".k");
+        if (!(eta.x > 0 && eta.y > 0 && eta.z > 0)) fail(n["eta"], path + ".eta", "must be positive");
+        m.conductor = conductor_fresnel::complex_ior(eta, k);
+      }
+      // [end]
+    } else if (type == "rough_dielectric") {
+      keys(n, path, {"type", "roughness", "ior"});
+      m.kind = material_kind::rough_dielectric;
+      m.roughness = roughness(n, path);
+      if (n["ior"]) {
+        m.ior = number(n["ior"], path + ".ior");
+        if (!(m.ior > 0) || m.ior == 1)
+          fail(n["ior"], path + ".ior", "must be positive and not 1 (no interface to be rough), got " + n["ior"].Scalar());
+      }
     } else {
       fail(n["type"], path + ".type", "unknown material type '" + type + "' (expected " + registry_.material_types() + ")");
     }
     return m;
+  }
+
+  // The GGX alpha of a rough material (microfacet.hpp: as Mitsuba's alpha, not squared).
+  double roughness(const YAML::Node& n, const std::string& path) const {
+    if (!n["roughness"]) return material{}.roughness;
+    const double r = number(n["roughness"], path + ".roughness");
+    if (!(r > 0 && r <= 1))
+      fail(n["roughness"], path + ".roughness", "must be in (0, 1] (the GGX alpha), got " + n["roughness"].Scalar());
+    return r;
   }
 
   void lights(const YAML::Node& n) {

@@ -140,19 +140,27 @@ rgb whitted_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, const r
       if (t) c += trace(*t, rgb(1.0f - R));
       return c;
     }
+    case material_kind::rough_conductor:  // refused by check_whitted_scene
+    case material_kind::rough_dielectric:
+      return rgb(0);
   }
   return rgb(0);
 }
 // [end]
 
-// Whitted's local model knows the built-in materials only: a custom BSDF used by an object is
-// refused by name rather than drawn as something else.
+// Whitted's local model knows the built-in materials only: a custom BSDF or a microfacet
+// material used by an object is refused by name rather than drawn as something else.
 template <class T> void check_whitted_scene(const scene_t<T>& sc) {
   for_each_object(sc, [&](object_ref o) {
     const material& m = sc.material_of(o);
     if (is_custom(m))
       throw error("whitted: material " + std::to_string(sc.material_index(o)) + " is a custom BSDF ('" +
                   m.bsdf->name() + "'), which the Whitted ray tracer cannot shade; render it with pathtrace");
+    // A glossy lobe is neither a mirror (one ray) nor a local model (a highlight per light):
+    // it needs the integral over directions that path tracing estimates.
+    if (is_microfacet(m))
+      throw error("whitted: material " + std::to_string(sc.material_index(o)) + " is a " + kind_name(m.kind) +
+                  ", a rough microfacet surface, which the Whitted ray tracer cannot shade; render it with pathtrace");
   });
 }
 
