@@ -57,6 +57,9 @@ if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
 else
   echo "make_figures: no matplotlib venv, skipping the 5.1 and 5.3 plots" >&2
 fi
+# --- 6.3
+"$bin/photons" --width 96 --height 96 --spp 64 --photons 10000 --ref-spp 64 --caustic-ref-spp 512 \
+  --out 6.3-photons.png >/dev/null && cp 6.3-photons.png "$fig/"
 # --- 5.2
 "$bin/bvh" --divs 32 --out 5.2-bvh-heat.png >/dev/null && cp 5.2-bvh-heat.png "$fig/"
 # --- assignments (book/assignments): the target images, made by the reference solutions

@@ -52,6 +52,11 @@ double window_rmse(const image& a, const image& ref, const window& w) {
   return std::sqrt(s / double((w.x1 - w.x0) * (w.y1 - w.y0)));
 }
 
+// The reference as the mean of two halves with seeds of their own; their difference tells its
+// own noise (RMSE of the mean = RMSE(half a - half b) / 2), the floor under every error below.
+image reference_of(const scene& sc, int spp, std::uint64_t seed, const render_options& ro, double& noise,
+                   double& seconds);
+
 // mis with jittered pixels, seed of its own.
 image render_mis(const scene& sc, int spp, std::uint64_t seed, const render_options& ro, render_stats* st = nullptr) {
   const path_tracer tracer(sc, path_options{});
@@ -85,6 +90,18 @@ image mis_for(const scene& sc, double seconds, std::uint64_t seed, const render_
   return img;
 }
 
+image reference_of(const scene& sc, int spp, std::uint64_t seed, const render_options& ro, double& noise,
+                   double& seconds) {
+  render_stats a, b;
+  const image ha = render_mis(sc, std::max(1, spp / 2), seed ^ 0x5eed5eed5eedull, ro, &a);
+  const image hb = render_mis(sc, std::max(1, spp / 2), seed ^ 0xfeedfeedfeedull, ro, &b);
+  image ref(ha.width, ha.height);
+  for (std::size_t i = 0; i < ref.pixels.size(); ++i) ref.pixels[i] = (ha.pixels[i] + hb.pixels[i]) * 0.5f;
+  noise = rmse(ha, hb) / 2;
+  seconds = a.seconds + b.seconds;
+  return ref;
+}
+
 image side_by_side(const std::vector<image>& tiles, int gap = 2) {
   const int w = tiles.at(0).width, h = tiles[0].height;
   image out(int(tiles.size()) * w + (int(tiles.size()) - 1) * gap, h, rgb(1));
@@ -99,10 +116,10 @@ image side_by_side(const std::vector<image>& tiles, int gap = 2) {
 int main(int argc, char** argv) {
   program_options cli{"Chapter 6.3: photon mapping - SPPM error against time vs mis, caustics, global + caustic maps (--spp: SPPM passes)",
                       take::image | take::scene};
-  cli.width = 48, cli.height = 48, cli.spp = 32, cli.out = "photons.png";
-  std::uint64_t photons = 20000;
+  cli.width = 32, cli.height = 32, cli.spp = 64, cli.out = "photons.png";
+  std::uint64_t photons = 5000;
   double radius = 0.08, alpha = 2.0 / 3.0;
-  int ref_spp = 512, caustic_ref_spp = 1024;
+  int ref_spp = 256, caustic_ref_spp = 512;
   std::string caustic_scene = "cornell-glass";
   cli.app.add_option("--photons", photons, "photons per SPPM pass (and 16x that for the two-pass photon map)");
   cli.app.add_option("--radius", radius, "initial SPPM radius r_0 and the photon map's radius (scene units)");
@@ -132,10 +149,10 @@ int main(int argc, char** argv) {
     // [end]
 
     // 1. SPPM against time on --scene.
-    render_stats rs;
-    const image reference = render_mis(sc, ref_spp, cli.seed ^ 0x5eed5eed5eedull, ro, &rs);
-    std::printf("reference: %s, %dx%d, mis, %d spp, %.2f s\n", cli.scene.c_str(), cli.width, cli.height, ref_spp,
-                rs.seconds);
+    double ref_noise = 0, ref_seconds = 0;
+    const image reference = reference_of(sc, ref_spp, cli.seed, ro, ref_noise, ref_seconds);
+    std::printf("reference: %s, %dx%d, mis, %d spp, %.2f s, its own noise (RMSE) %.5f\n", cli.scene.c_str(),
+                cli.width, cli.height, ref_spp, ref_seconds, ref_noise);
     convergence_log log("sppm on " + cli.scene, {"rmse", "radius"}, "rmse", "passes");
     sppm s(sc, so);
     std::printf("%s\n%8s %10s %8s %9s %8s\n", s.lights().describe().c_str(), "passes", "photons", "radius", "rmse",
@@ -160,8 +177,8 @@ int main(int argc, char** argv) {
     // 2. The caustic: SPPM and mis at equal time on the glass sphere's Cornell box.
     scene glass = load_scene_argument(caustic_scene).sc;
     glass.settings.width = cli.width, glass.settings.height = cli.height;
-    render_stats gs;
-    const image glass_ref = render_mis(glass, caustic_ref_spp, cli.seed ^ 0x5eed5eed5eedull, ro, &gs);
+    double g_noise = 0, g_ref_seconds = 0;
+    const image glass_ref = reference_of(glass, caustic_ref_spp, cli.seed, ro, g_noise, g_ref_seconds);
     sppm g(glass, so);
     const stopwatch gclock;
     while (g.passes() < cli.spp) g.run_pass();
@@ -172,8 +189,9 @@ int main(int argc, char** argv) {
     // The caustic of cornell-glass: on the floor in front of the sphere (x 0.38, z 0.35),
     // the window in image fractions (found in the reference: its brightest floor patch).
     const window cw{int(0.62 * cli.width), int(0.86 * cli.height), int(0.78 * cli.width), int(0.94 * cli.height)};
-    std::printf("caustic scene %s: reference mis %d spp (%.2f s); caustic window mean: reference %.4f\n",
-                caustic_scene.c_str(), caustic_ref_spp, gs.seconds, window_mean(glass_ref, cw));
+    std::printf("caustic scene %s: reference mis %d spp (%.2f s, its own noise %.5f); caustic window mean: "
+                "reference %.4f\n", caustic_scene.c_str(), caustic_ref_spp, g_ref_seconds, g_noise,
+                window_mean(glass_ref, cw));
     std::printf("  equal time %.2f s: sppm %d passes RMSE %.5f, window mean %.4f, window RMSE %.5f\n", g_seconds,
                 g.passes(), rmse(g_sppm, glass_ref), window_mean(g_sppm, cw), window_rmse(g_sppm, glass_ref, cw));
     std::printf("  equal time %.2f s: mis %d spp   RMSE %.5f, window mean %.4f, window RMSE %.5f\n", g_seconds,
