@@ -66,6 +66,9 @@ cp 6.2-caustic-box.png 6.2-caustic-box-strategies.png 6.2-ajar-door.png 6.2-ajar
 # --- 5.4
 "$bin/microfacets" --width 480 --height 154 --spp 32 --ref-spp 64 --albedo-samples 0 --out 5.4-balls.png >/dev/null \
   && cp 5.4-balls-reference.png "$fig/5.4-material-balls.png"
+# --- 6.3
+"$bin/photons" --width 96 --height 96 --spp 64 --photons 10000 --ref-spp 64 --caustic-ref-spp 512 \
+  --out 6.3-photons.png >/dev/null && cp 6.3-photons.png "$fig/"
 # --- 5.2
 "$bin/bvh" --divs 32 --out 5.2-bvh-heat.png >/dev/null && cp 5.2-bvh-heat.png "$fig/"
 # --- assignments (book/assignments): the target images, made by the reference solutions
