@@ -49,6 +49,7 @@ struct material {
   rgb kd{0.8f}, ks{0.2f};                      // phong
   double shininess = 32;                       // phong exponent p
   std::shared_ptr<const custom_bsdf> bsdf;     // set: a user-defined BSDF (custom_bsdf.hpp)
+  int interior = -1;  // media (book 6.1): scene.media index inside this closed shape; -1 no change
 
   static material lambertian(rgb albedo) { return lambertian(texture::solid(albedo)); }
   static material lambertian(texture albedo) {
@@ -89,6 +90,13 @@ struct material {
     m.bsdf = std::move(f);
     return m;
   }
+  // A boundary only (book 6.1): an index-matched interface (a dielectric of ior 1) that rays
+  // cross unchanged; it marks where a medium begins (interior) without refracting.
+  static material boundary(int interior_medium) {
+    material m = dielectric(1.0);
+    m.interior = interior_medium;
+    return m;
+  }
   static material phong(rgb kd, rgb ks, double shininess) {
     material m;
     m.kind = material_kind::phong;
@@ -121,6 +129,10 @@ template <class T> rgb emitted(const material& m, const hit_t<T>& h) {
   return h.front_face || m.two_sided ? m.radiance : rgb(0);
 }
 inline bool emits(const material& m) { return m.radiance != rgb(0); }
+// Index-matched: light crosses it unchanged (media.hpp lets paths and shadow rays through).
+inline bool is_index_matched(const material& m) {
+  return !m.bsdf && m.kind == material_kind::dielectric && m.ior == 1.0 && !emits(m);
+}
 
 template <class T> struct scatter_t {
   vec3_t<T> direction;  // unit, away from the surface

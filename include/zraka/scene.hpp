@@ -13,6 +13,7 @@
 #include <zraka/bvh.hpp>
 #include <zraka/camera.hpp>
 #include <zraka/material.hpp>
+#include <zraka/medium.hpp>
 #include <zraka/mesh.hpp>
 #include <zraka/plane.hpp>
 #include <zraka/quad.hpp>
@@ -89,6 +90,10 @@ template <class T> struct scene_t {
   camera_t<T> camera;
   render_settings settings;
   acceleration accel;              // empty: every object is tested
+  // Participating media (book 6.1): a material's `interior` names one by index; global_medium
+  // fills everything outside those shapes (fog: the camera starts in it), -1 for clear air.
+  std::vector<medium> media;
+  int global_medium = -1;
 
   int add_material(const material& m) {
     materials.push_back(m);
@@ -122,6 +127,11 @@ template <class T> struct scene_t {
     return push(user_shapes, std::move(s), mat, shape_kind::user);
   }
   void add(const point_light_t<T>& l) { point_lights.push_back(l); }
+  int add_medium(const medium& m) {
+    m.check();
+    media.push_back(m);
+    return static_cast<int>(media.size()) - 1;
+  }
 
   int material_index(object_ref o) const;
   const material& material_of(object_ref o) const { return materials[std::size_t(material_index(o))]; }
