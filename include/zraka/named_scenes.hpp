@@ -61,7 +61,7 @@ struct named_scene {
 
 // Every accepted name, in the order --help lists them. scenes/cornell*.yaml hold the same
 // Cornell boxes as the C++ (chapter 2.3's smoke test checks it bit for bit).
-inline constexpr std::array<named_scene, 11> named_scenes{{
+inline constexpr std::array<named_scene, 13> named_scenes{{
     {"cornell", [] { return cornell_box<double>(cornell_variant::boxes); }, "the Cornell box with two white boxes"},
     {"cornell-glass", [] { return cornell_box<double>(cornell_variant::glass); }, "the tall box and a glass sphere"},
     {"cornell-spheres", [] { return cornell_box<double>(cornell_variant::spheres); }, "a mirror and a glass sphere"},
@@ -73,6 +73,8 @@ inline constexpr std::array<named_scene, 11> named_scenes{{
     {"glass-both", nullptr, "scenes/glass-both.yaml"},
     {"glass-reflect", nullptr, "scenes/glass-reflect.yaml"},
     {"glass-refract", nullptr, "scenes/glass-refract.yaml"},
+    {"fog-cornell", nullptr, "scenes/fog-cornell.yaml"},
+    {"milk-glass", nullptr, "scenes/milk-glass.yaml"},
 }};
 
 // "cornell, cornell-glass, ..." for --help and error messages.

@@ -38,7 +38,7 @@ inline const std::vector<std::string>& builtin_object_types() {
   return v;
 }
 inline const std::vector<std::string>& builtin_material_types() {
-  static const std::vector<std::string> v = {"lambertian", "metal", "dielectric", "emitter", "phong"};
+  static const std::vector<std::string> v = {"lambertian", "metal", "dielectric", "emitter", "phong", "boundary"};
   return v;
 }
 
