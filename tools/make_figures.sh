@@ -57,6 +57,9 @@ if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
 else
   echo "make_figures: no matplotlib venv, skipping the 5.1 and 5.3 plots" >&2
 fi
+# --- 6.1 (the long delta-tracking references are the figures)
+"$bin/media" --width 128 --height 128 --spp 1 --ref-spp 384 --steps 0.5 --out 6.1-fog.png >/dev/null && cp 6.1-fog-reference.png "$fig/6.1-fog.png"
+"$bin/media" --scene milk-glass --width 128 --height 128 --spp 1 --ref-spp 192 --steps 0.5 --out 6.1-milk.png >/dev/null && cp 6.1-milk-reference.png "$fig/6.1-milk.png"
 # --- 5.2
 "$bin/bvh" --divs 32 --out 5.2-bvh-heat.png >/dev/null && cp 5.2-bvh-heat.png "$fig/"
 # --- assignments (book/assignments): the target images, made by the reference solutions

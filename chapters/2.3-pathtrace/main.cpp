@@ -52,7 +52,16 @@ std::string scene_json(const scene& sc, int width, int height, int depth) {
     o << ", \"checker\": " << (m.albedo.type == texture::kind::checker ? "true" : "false")
       << ", \"fuzz\": " << m.fuzz << ", \"ior\": " << m.ior << ", \"radiance\": ";
     v3(m.radiance);
-    o << ", \"two_sided\": " << (m.two_sided ? "true" : "false") << "}";
+    o << ", \"two_sided\": " << (m.two_sided ? "true" : "false") << ", \"interior\": " << m.interior << "}";
+  }
+  o << "],\n  \"global_medium\": " << sc.global_medium << ",\n  \"media\": [";  // book 6.1
+  for (std::size_t i = 0; i < sc.media.size(); ++i) {
+    const medium& md = sc.media[i];
+    o << (i ? ",\n    " : "\n    ") << "{\"name\": \"" << md.name << "\", \"sigma_a\": ";
+    v3(md.sigma_a);
+    o << ", \"sigma_s\": ";
+    v3(md.sigma_s);
+    o << ", \"g\": " << md.g << "}";
   }
   o << "],\n  \"spheres\": [";
   for (std::size_t i = 0; i < sc.spheres.size(); ++i) {
@@ -140,6 +149,8 @@ int main(int argc, char** argv) {
     if (!report.empty() && reference.empty()) throw error("--report needs --reference");
     if (!json.empty()) {
       if (!sc.planes.empty()) throw error("--export: Mitsuba has no infinite plane; use a large quad");
+      for (const medium& md : sc.media)
+        if (!md.homogeneous()) throw error("--export: medium '" + md.name + "' is a density grid; only homogeneous media are exported");
       if (!sc.user_shapes.empty()) throw error("--export: a user shape ('" + sc.user_shapes[0].shape->name() + "') cannot be exported");
       for (const material& m : sc.materials)
         if (is_custom(m)) throw error("--export: a custom BSDF ('" + m.bsdf->name() + "') cannot be exported");
