@@ -131,6 +131,8 @@ TEST_CASE("media: scenes without media draw the same numbers; refusals by name")
   CHECK_NOTHROW(path_tracer(sc, march));
   march.media.step = 0;
   CHECK_THROWS_WITH_AS(path_tracer(sc, march), doctest::Contains("march step"), error);
+  march.media.step = 1e-9;
+  CHECK_THROWS_WITH_AS(path_tracer(sc, march), doctest::Contains("more than a million steps"), error);
   CHECK_THROWS_WITH_AS(pack_scene(sc, 8, 8, path_options{}), doctest::Contains("participating media ('test')"), error);
   march.media.step = 0.1;
   sc.materials[0].interior = 5;

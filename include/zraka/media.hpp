@@ -66,6 +66,10 @@ template <class T> void check_media(const scene_t<T>& sc, const medium_options& 
     throw error("media: the march step must be positive and finite, got " + std::to_string(o.step));
   for (const medium& m : sc.media) {
     m.check();
+    if (!m.homogeneous() && o.estimator == media_estimator::march &&
+        glm::length(m.density->box().hi - m.density->box().lo) / o.step > 1e6)  // a typo must not hang
+      throw error("medium '" + m.name + "': a march step of " + std::to_string(o.step) +
+                  " takes more than a million steps across its density grid");
     if (!m.homogeneous() && o.estimator == media_estimator::delta && !m.gray())
       throw error("medium '" + m.name + "': delta tracking of a density grid needs the same sigma_t in every "
                   "channel (sigma_a + sigma_s); make it gray or use the march estimator");
