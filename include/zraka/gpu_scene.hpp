@@ -198,6 +198,10 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   if (!sc.user_shapes.empty())
     throw error("realtime: the scene has a user shape ('" + sc.user_shapes[0].shape->name() +
                 "'), which the OpenCL kernel cannot intersect; render it with pathtrace");
+  if (sc.environment)  // the kernel has no environment light (a constant sky: settings.background, hit only)
+    throw error("realtime: the scene has an environment light ('" + sc.environment->name() +
+                "'), which the OpenCL kernel cannot sample; render it with pathtrace" +
+                (sc.environment->is_constant() ? ", or give the colour as settings.background (counted where rays find it)" : ""));
   for_each_object(sc, [&](object_ref o) {
     const material& m = sc.material_of(o);
     if (is_custom(m))

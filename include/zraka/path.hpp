@@ -13,8 +13,9 @@
 //   mis    multiple importance sampling (Veach and Guibas 1995): the light sample and the
 //          BSDF-sampled ray that hits a light are both kept, each weighted by the power heuristic
 //          of the two densities for its direction, so the two weights of one path sum to one.
-// Emission nobody samples (the background, an infinite plane: lights.hpp) is always counted
-// where a ray finds it. Paths stop at max_depth bounces and, from rr_depth bounces on, go on
+// Emission nobody samples (the background colour, an infinite plane: lights.hpp) is always
+// counted where a ray finds it; the environment light (environment.hpp) is sampled like any
+// light, and a ray that leaves the scene finds it. Paths stop at max_depth bounces and, from rr_depth bounces on, go on
 // with probability q = min(1, max throughput), dividing by q (Russian roulette: unbiased).
 //
 // The OpenCL kernel (kernels/pathtrace.cl) mirrors this loop line for line.
@@ -86,7 +87,14 @@ rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r
   for (int bounce = 0;; ++bounce) {
     scene_hit_t<T> sh;
     ++rays;
-    if (!nearest_hit(sc, r, sh)) return L + beta * sc.background;  // no sampler knows the sky
+    if (!nearest_hit(sc, r, sh)) {
+      if (!sc.environment) return L + beta * sc.background;  // no sampler knows a plain background
+      // The environment light, found by this ray: by the same rule as emission below.
+      const rgb Le = sc.environment->radiance(r.direction);
+      if (!nee || specular || lights.environment_index() < 0) return L + beta * Le;
+      if (mis) return L + beta * Le * float(power_heuristic(bsdf_pdf, lights.environment_pdf(r.direction)));
+      return L;
+    }
     const material& m = sc.materials[std::size_t(sh.material)];
     // Emission found by this ray: all of it, its MIS share, or none (nee: the light sample at
     // the previous hit counted this light already).

@@ -12,6 +12,7 @@
 // them to pay; planes are infinite and are always tested.
 #include <zraka/bvh.hpp>
 #include <zraka/camera.hpp>
+#include <zraka/environment.hpp>
 #include <zraka/material.hpp>
 #include <zraka/mesh.hpp>
 #include <zraka/plane.hpp>
@@ -84,7 +85,10 @@ template <class T> struct scene_t {
   std::vector<mesh_object_t<T>> meshes;
   std::vector<object_t<user_shape_ptr<T>>> user_shapes;
   std::vector<point_light_t<T>> point_lights;
-  rgb background{0};               // radiance of rays that leave the scene
+  rgb background{0};               // radiance of rays that leave the scene (hit only)
+  // The environment light (environment.hpp): when set, rays that leave the scene see it instead
+  // of the background, and the lights sample it (lights.hpp).
+  std::shared_ptr<const environment_map> environment;
   rgb ambient{0};                  // Whitted only: Phong's ambient light I_a
   camera_t<T> camera;
   render_settings settings;

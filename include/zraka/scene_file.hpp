@@ -21,6 +21,7 @@
 // Needs yaml-cpp (link yaml-cpp).
 #include <zraka/affine.hpp>
 #include <zraka/bpt.hpp>
+#include <zraka/environment_file.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
 #include <zraka/input_file.hpp>
@@ -132,9 +133,10 @@ class scene_reader {
     check_yaml_size(root);
     if (!root || root.IsNull()) throw error(name_ + ": the scene file is empty");
     if (!root.IsMap()) fail(root, "", "a scene file is a map with the sections settings, camera, materials, lights, objects");
-    keys(root, "", {"settings", "camera", "materials", "lights", "objects"});
+    keys(root, "", {"settings", "camera", "materials", "lights", "objects", "environment"});
 
     settings(root["settings"]);
+    environment(root["environment"], root);
     camera(root["camera"]);
     materials(root["materials"]);
     lights(root["lights"]);
@@ -325,6 +327,41 @@ class scene_reader {
     r["background"] = flow(out_.sc.background);
     r["ambient"] = flow(out_.sc.ambient);
   }
+
+  // [listing scene-environment]
+  // environment: {file: sky.hdr, scale: 1, rotate: 0}  or  {color: [r, g, b], scale: 1}
+  void environment(const YAML::Node& n, const YAML::Node& root) {
+    if (!n) return;
+    if (!n.IsMap()) fail(n, "environment", "expected {file: ..., scale: ..., rotate: ...} or {color: [r, g, b]}, got " + scalar_text(n));
+    keys(n, "environment", {"file", "color", "scale", "rotate"});
+    if (bool(n["file"]) == bool(n["color"])) fail(n, "environment", "give exactly one of file and color");
+    if (root["settings"] && root["settings"]["background"])
+      fail(root["settings"]["background"], "settings.background",
+           "the scene has an environment, which rays that leave the scene see; give one or the other");
+    const double scale = n["scale"] ? number(n["scale"], "environment.scale") : 1.0;
+    if (scale < 0) fail(n["scale"], "environment.scale", "must not be negative, got " + n["scale"].Scalar());
+    const double rotate = n["rotate"] ? number(n["rotate"], "environment.rotate") : 0.0;
+    YAML::Node r = resolved_["environment"];
+    if (n["color"]) {
+      const rgb c = colour(n["color"], "environment.color");
+      out_.sc.environment = std::make_shared<environment_map>(environment_map::constant(c, float(scale), rotate));
+      r["color"] = flow(c);
+    } else {
+      const std::filesystem::path file = find_file(n["file"], "environment.file");
+      try {
+        out_.sc.environment = std::make_shared<environment_map>(load_environment(file, float(scale), rotate));
+      } catch (const error& e) {  // name the file as the scene does, not by its full path
+        std::string msg = e.what();
+        if (msg.rfind(file.string(), 0) == 0) msg = n["file"].Scalar() + msg.substr(file.string().size());
+        fail(n["file"], "environment.file", msg);
+      }
+      r["file"] = n["file"].Scalar();
+    }
+    r["scale"] = num(scale);
+    r["rotate"] = num(rotate);
+    resolved_["settings"].remove("background");  // the resolved scene must load again
+  }
+  // [end]
 
   void camera(const YAML::Node& n) {
     camera_t<double>& c = out_.sc.camera;
