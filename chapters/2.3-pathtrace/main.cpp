@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
   app.add_flag("--centre", centre, "sample every pixel at its centre (no anti-aliasing): the error against a "
                "reference made the same way is then the light transport's alone");
   app.add_option("--time-budget", budget, "stop doubling the samples after this many seconds (0 = no limit)");
-  app.add_option("--reference", reference, "reference image (.pfm): print the error after every pass");
+  app.add_option("--reference", reference, "reference image (.pfm or .exr): print the error after every pass");
   app.add_option("--report", report, "write the error table as CSV (needs --reference)");
   app.add_option("--pfm", pfm, "also write the linear image as PFM (e.g. to be a reference)");
   app.add_option("--export", json, "write the scene as JSON for tools/mitsuba_reference.py and stop");
@@ -141,6 +141,7 @@ int main(int argc, char** argv) {
     if (!json.empty()) {
       if (!sc.planes.empty()) throw error("--export: Mitsuba has no infinite plane; use a large quad");
       if (!sc.user_shapes.empty()) throw error("--export: a user shape ('" + sc.user_shapes[0].shape->name() + "') cannot be exported");
+      if (sc.environment) throw error("--export: the environment light ('" + sc.environment->name() + "') is not exported to Mitsuba yet");
       for (const material& m : sc.materials)
         if (is_custom(m)) throw error("--export: a custom BSDF ('" + m.bsdf->name() + "') cannot be exported");
       write_file_atomically(json, scene_json(sc, W, H, io.max_depth));
@@ -150,7 +151,7 @@ int main(int argc, char** argv) {
     }
     std::optional<image> ref;
     if (!reference.empty()) {
-      ref = read_pfm(input_file(reference));
+      ref = read_float_image(input_file(reference));
       check_same_size(image(W, H), *ref);
     }
 

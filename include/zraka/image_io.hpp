@@ -257,12 +257,10 @@ inline image read_exr(const std::filesystem::path& path) {
 }
 // [end]
 
-// Reads a float image by extension: .pfm or .exr (references).
+// Reads a float image (a reference): .exr as OpenEXR, any other name as PFM (whose reader
+// checks its header and says so when it is not one).
 inline image read_float_image(const std::filesystem::path& path) {
-  const auto ext = path.extension().string();
-  if (ext == ".pfm") return read_pfm(path);
-  if (ext == ".exr") return read_exr(path);
-  throw error("unknown float image type '" + ext + "' for " + path.string() + " (use .pfm or .exr)");
+  return path.extension() == ".exr" ? read_exr(path) : read_pfm(path);
 }
 
 // Writes by extension: .png, .ppm, .pfm or .exr.
