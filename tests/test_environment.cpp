@@ -301,3 +301,21 @@ TEST_CASE("environment: scene files give a map or a colour; the resolved scene l
   const loaded_scene again = parse_scene(c.resolved, "again.yaml");
   CHECK(again.sc.environment->radiance(vec3(1, 0, 0)) == rgb(0.5f, 1, 1.5f));
 }
+
+TEST_CASE_TEMPLATE("environment: in float and double, a sample's pdf is pdf() and u near 1 is safe", T, float, double) {
+  const environment_map env = environment_map::from_image(sky_image(64, 32, 300, 2, 40, 6), "sky", 1.0f, 30.0);
+  rng g(21, 0, 0);
+  for (int k = 0; k < 2000; ++k) {
+    T pdf = T(0);
+    const vec3_t<T> w = env.sample(vec2_t<T>(g.uniform2()), pdf);
+    if (!(pdf > T(0))) continue;
+    REQUIRE(std::abs(double(glm::length(w)) - 1) < 1e-5);
+    CHECK(double(pdf) == doctest::Approx(double(env.pdf(w))).epsilon(1e-3));
+  }
+  for (T u : {T(0), one_minus_epsilon<T>, T(1)}) {
+    T pdf = T(-1);
+    const vec3_t<T> w = env.sample(vec2_t<T>(u, u), pdf);
+    CHECK(pdf >= T(0));
+    CHECK(is_finite(w));
+  }
+}

@@ -15,8 +15,9 @@
 //          of the two densities for its direction, so the two weights of one path sum to one.
 // Emission nobody samples (the background colour, an infinite plane: lights.hpp) is always
 // counted where a ray finds it; the environment light (environment.hpp) is sampled like any
-// light, and a ray that leaves the scene finds it. Paths stop at max_depth bounces and, from rr_depth bounces on, go on
-// with probability q = min(1, max throughput), dividing by q (Russian roulette: unbiased).
+// light, and a ray that leaves the scene finds it. Paths stop at max_depth bounces and, from
+// rr_depth bounces on, go on with probability q = min(1, max throughput), dividing by q
+// (Russian roulette: unbiased).
 //
 // The OpenCL kernel (kernels/pathtrace.cl) mirrors this loop line for line.
 #include <zraka/lights.hpp>
