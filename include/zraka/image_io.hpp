@@ -5,6 +5,7 @@
 // written silently: they are counted, written as magenta in PNG/PPM, reported on stderr and
 // returned; PFM refuses them, since a reference image with NaN would poison every comparison.
 #include <zraka/atomic_file.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/image.hpp>
 #include <zraka/input_file.hpp>
 
@@ -22,9 +23,17 @@
 #include <string>
 #include <string_view>
 
+// The writers and the PFM reader are compiled into zraka::compiled (compiled.hpp): with
+// stb_image_write's implementation they cost every unit that writes an image ~1.5 CPU-s at -O3.
+// stb is static, in the library's unit or (header-only) in the program's: it never clashes with
+// an stb of the program's own.
+#if ZRAKA_COMPILED_DEFINITIONS
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
+#endif
+
+static_assert(std::endian::native == std::endian::little, "PFM I/O assumes a little-endian host");
 
 namespace zraka {
 
@@ -61,8 +70,23 @@ inline void report_nonfinite(std::size_t bad, const std::filesystem::path& path)
 }
 }  // namespace detail
 
-// Returns the number of NaN/inf pixels (written as magenta).
-inline std::size_t write_png(const image& img, const std::filesystem::path& path) {
+// Each returns the number of NaN/inf pixels (written as magenta).
+ZRAKA_COMPILED_FN std::size_t write_png(const image& img, const std::filesystem::path& path);
+// PPM P3: plain text, one pixel per line, as the thesis's CPU programs wrote.
+ZRAKA_COMPILED_FN std::size_t write_ppm(const image& img, const std::filesystem::path& path);
+// PFM: little-endian floats, rows stored bottom to top (the format's rule); refuses NaN/inf.
+ZRAKA_COMPILED_FN void write_pfm(const image& img, const std::filesystem::path& path);
+// Writes by extension: .png, .ppm or .pfm.
+ZRAKA_COMPILED_FN void write_image(const image& img, const std::filesystem::path& path);
+
+// Strict: the header "PF W H SCALE" with a negative (little-endian) finite scale, exactly W*H
+// pixels after it, every one finite (a reference with NaN would poison every comparison).
+// parse_pfm reads the bytes of a PFM file (`name` for messages); read_pfm a file.
+ZRAKA_COMPILED_FN image parse_pfm(std::string_view bytes, const std::string& name);
+ZRAKA_COMPILED_FN image read_pfm(const std::filesystem::path& path);
+
+#if ZRAKA_COMPILED_DEFINITIONS
+ZRAKA_COMPILED_FN std::size_t write_png(const image& img, const std::filesystem::path& path) {
   std::string rgb8;
   const std::size_t bad = detail::encode_8bit(img, rgb8);
   std::string png;
@@ -76,8 +100,7 @@ inline std::size_t write_png(const image& img, const std::filesystem::path& path
   return bad;
 }
 
-// PPM P3: plain text, one pixel per line, as the thesis's CPU programs wrote.
-inline std::size_t write_ppm(const image& img, const std::filesystem::path& path) {
+ZRAKA_COMPILED_FN std::size_t write_ppm(const image& img, const std::filesystem::path& path) {
   std::string rgb8;
   const std::size_t bad = detail::encode_8bit(img, rgb8);
   std::ostringstream out;
@@ -90,9 +113,7 @@ inline std::size_t write_ppm(const image& img, const std::filesystem::path& path
   return bad;
 }
 
-// PFM: little-endian floats, rows stored bottom to top (the format's rule).
-static_assert(std::endian::native == std::endian::little, "PFM I/O assumes a little-endian host");
-inline void write_pfm(const image& img, const std::filesystem::path& path) {
+ZRAKA_COMPILED_FN void write_pfm(const image& img, const std::filesystem::path& path) {
   if (const std::size_t bad = img.count_nonfinite())
     throw error("refusing to write " + path.string() + ": " + std::to_string(bad) +
                 " NaN/inf pixel(s)");
@@ -106,10 +127,7 @@ inline void write_pfm(const image& img, const std::filesystem::path& path) {
   write_file_atomically(path, out);
 }
 
-// Strict: the header "PF W H SCALE" with a negative (little-endian) finite scale, exactly W*H
-// pixels after it, every one finite (a reference with NaN would poison every comparison).
-// parse_pfm reads the bytes of a PFM file (`name` for messages); read_pfm a file.
-inline image parse_pfm(std::string_view bytes, const std::string& name) {
+ZRAKA_COMPILED_FN image parse_pfm(std::string_view bytes, const std::string& name) {
   std::size_t pos = 0;
   auto field = [&](const char* what) {
     while (pos < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
@@ -155,12 +173,11 @@ inline image parse_pfm(std::string_view bytes, const std::string& name) {
         throw error(name + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is NaN or infinite");
   return img;
 }
-inline image read_pfm(const std::filesystem::path& path) {
+ZRAKA_COMPILED_FN image read_pfm(const std::filesystem::path& path) {
   return parse_pfm(read_input_file(path), path.string());  // a regular file within limits().file_bytes
 }
 
-// Writes by extension: .png, .ppm or .pfm.
-inline void write_image(const image& img, const std::filesystem::path& path) {
+ZRAKA_COMPILED_FN void write_image(const image& img, const std::filesystem::path& path) {
   check_output_name(path);  // "" or "folder/" say so, rather than "unknown image type ''"
   const auto ext = path.extension().string();
   if (ext == ".png") write_png(img, path);
@@ -168,5 +185,6 @@ inline void write_image(const image& img, const std::filesystem::path& path) {
   else if (ext == ".pfm") write_pfm(img, path);
   else throw error("unknown image type '" + ext + "' for " + path.string() + " (use .png, .ppm or .pfm)");
 }
+#endif  // ZRAKA_COMPILED_DEFINITIONS
 
 }  // namespace zraka
