@@ -125,6 +125,64 @@ TEST_CASE("image_io: PFM round trip is bit-exact; PFM refuses NaN") {
   CHECK_FALSE(fs::exists(dir.path / "nan.pfm"));
 }
 
+TEST_CASE("image_io: EXR round trip is bit-exact in float; EXR refuses NaN; write_image takes .exr") {
+  temp_dir dir;
+  image img(5, 3);
+  const float specials[] = {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(),
+                            std::numeric_limits<float>::max(), 1e-30f, 0.1f, 12345.678f,
+                            -2.5f, std::nextafter(1.0f, 2.0f)};
+  for (std::size_t i = 0; i < img.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) img.pixels[i][c] = specials[(3 * i + c) % 9] * (c == 2 ? -1 : 1) + float(i) * (c == 1);
+  write_image(img, dir.path / "t.exr");
+  const image back = read_exr(dir.path / "t.exr");
+  REQUIRE(back.width == 5);
+  REQUIRE(back.height == 3);
+  CHECK(std::memcmp(back.pixels.data(), img.pixels.data(), img.pixels.size() * sizeof(rgb)) == 0);
+  CHECK(read(dir.path / "t.exr").rfind("\x76\x2f\x31\x01", 0) == 0);  // the EXR magic number
+  const image also = read_float_image(dir.path / "t.exr");
+  CHECK(std::memcmp(also.pixels.data(), img.pixels.data(), img.pixels.size() * sizeof(rgb)) == 0);
+
+  img.at(4, 2).g = nan_f;
+  CHECK_THROWS_WITH_AS(write_exr(img, dir.path / "nan.exr"), doctest::Contains("1 NaN/inf pixel(s)"), error);
+  CHECK_FALSE(fs::exists(dir.path / "nan.exr"));
+}
+
+TEST_CASE("image_io: truncated, corrupted or foreign EXR files give a clear error, never a crash") {
+  temp_dir dir;
+  image img(16, 8);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = rgb(float(i), 0.5f, 1e3f / float(i + 1));
+  write_exr(img, dir.path / "t.exr");
+  const std::string bytes = read(dir.path / "t.exr");
+  CHECK_THROWS_WITH_AS(parse_exr("PF\n1 1\n-1.0\n", "p.exr"), doctest::Contains("p.exr: not an OpenEXR file"), error);
+  CHECK_THROWS_WITH_AS(read_exr(dir.path / "none.exr"), doctest::Contains("cannot open"), error);
+  int refused = 0, read_ok = 0;
+  for (std::size_t n = 0; n < bytes.size(); n += 3) {  // every truncation
+    try {
+      (void)parse_exr(std::string_view(bytes).substr(0, n), "cut.exr");
+      ++read_ok;
+    } catch (const error& e) {
+      CHECK(std::string(e.what()).rfind("cut.exr: ", 0) == 0);
+      ++refused;
+    }
+  }
+  for (std::size_t k = 0; k < bytes.size(); k += 5) {  // a byte changed anywhere
+    std::string bad = bytes;
+    bad[k] = char(bad[k] ^ 0x5a);
+    try {
+      const image b = parse_exr(bad, "flip.exr");
+      CHECK(b.count_nonfinite() == 0);
+      ++read_ok;
+    } catch (const error& e) {
+      CHECK(std::string(e.what()).rfind("flip.exr: ", 0) == 0);
+      ++refused;
+    }
+  }
+  MESSAGE("malformed EXR: " << refused << " refused, " << read_ok << " read (a flip inside the pixels)");
+  CHECK(refused > 0);
+  std::ofstream(dir.path / "t.png") << "not a float image";
+  CHECK_THROWS_WITH_AS(read_float_image(dir.path / "t.png"), doctest::Contains("not a little-endian colour PFM"), error);
+}
+
 TEST_CASE("image_io: truncated or foreign PFM files give a clear error") {
   temp_dir dir;
   image img(4, 4, rgb(0.25f));

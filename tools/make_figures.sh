@@ -48,6 +48,7 @@ xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 # --- 5.1, 5.3
 "$bin/antialiasing" --out 5.1-antialiasing.png >/dev/null && cp 5.1-antialiasing.png "$fig/"
 "$bin/importance" --out 5.3-importance.png >/dev/null && cp 5.3-importance.png "$fig/"
+"$bin/pathtrace" --scene "$fig/../../scenes/sky.yaml" --spp 256 --out 5.3-sky.png >/dev/null && cp 5.3-sky.png "$fig/"
 if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
   aa_plot=("${bin%/build/bin}/build/plot-venv/bin/python" "${bin%/build/bin}/tools/plot_convergence.py")
   "${aa_plot[@]}" 5.1-antialiasing-{regular,uniform,stratified}.csv -o "$fig/5.1-rmse.png" \
@@ -69,6 +70,9 @@ cp 6.2-caustic-box.png 6.2-caustic-box-strategies.png 6.2-ajar-door.png 6.2-ajar
 # --- 6.3
 "$bin/photons" --width 96 --height 96 --spp 64 --photons 10000 --ref-spp 64 --caustic-ref-spp 512 \
   --out 6.3-photons.png >/dev/null && cp 6.3-photons.png "$fig/"
+# --- 6.1 (the long delta-tracking references are the figures)
+"$bin/media" --width 128 --height 128 --spp 1 --ref-spp 384 --steps 0.5 --out 6.1-fog.png >/dev/null && cp 6.1-fog-reference.png "$fig/6.1-fog.png"
+"$bin/media" --scene milk-glass --width 128 --height 128 --spp 1 --ref-spp 192 --steps 0.5 --out 6.1-milk.png >/dev/null && cp 6.1-milk-reference.png "$fig/6.1-milk.png"
 # --- 5.2
 "$bin/bvh" --divs 32 --out 5.2-bvh-heat.png >/dev/null && cp 5.2-bvh-heat.png "$fig/"
 # --- assignments (book/assignments): the target images, made by the reference solutions

@@ -70,6 +70,8 @@ def bsdf_of(m, index):
             raise ValueError(f"material {index}: fuzzy metal (fuzz {m['fuzz']}) has no Mitsuba counterpart")
         return {"type": "conductor", "material": "none", "specular_reflectance": rgb(m["albedo"])}
     if kind == "dielectric":
+        if float(m["ior"]) == 1.0 and m.get("interior", -1) >= 0:  # zraka's boundary: index-matched
+            return {"type": "null"}
         return {"type": "dielectric", "int_ior": float(m["ior"]), "ext_ior": 1.0}
     raise ValueError(f"material {index}: type {kind} has no exact Mitsuba counterpart")
 
@@ -85,9 +87,11 @@ def emitter_of(m, index):
 def scene_dict(js, mi, workdir):
     T = mi.ScalarTransform4f
     cam = js["camera"]
+    media = js.get("media", [])
     d = {
         "type": "scene",
-        "integrator": {"type": "path", "max_depth": int(js["max_depth"]) + 1},
+        # volpath when there are media (book 6.1): Mitsuba's homogeneous medium with an hg phase
+        "integrator": {"type": "volpath" if media else "path", "max_depth": int(js["max_depth"]) + 1},
         "sensor": {
             "type": "perspective",
             "fov": float(cam["vfov"]),
@@ -98,12 +102,23 @@ def scene_dict(js, mi, workdir):
             "sampler": {"type": "independent"},
         },
     }
+    for i, md in enumerate(media):
+        st = [a + s for a, s in zip(md["sigma_a"], md["sigma_s"])]
+        d[f"medium{i}"] = {"type": "homogeneous", "sigma_t": rgb(st),
+                           "albedo": rgb([s / t if t > 0 else 0.0 for s, t in zip(md["sigma_s"], st)]),
+                           "phase": {"type": "hg", "g": float(md["g"])} if md["g"] != 0 else {"type": "isotropic"}}
+    if js.get("global_medium", -1) >= 0:
+        d["sensor"]["medium"] = {"type": "ref", "id": f"medium{js['global_medium']}"}
     mats = js["materials"]
     bsdfs = [bsdf_of(m, i) for i, m in enumerate(mats)]
     emitters = [emitter_of(m, i) for i, m in enumerate(mats)]
 
     def shape(s, mat, name):
         s["bsdf"] = bsdfs[mat]
+        if mats[mat].get("interior", -1) >= 0:
+            s["interior"] = {"type": "ref", "id": f"medium{mats[mat]['interior']}"}
+            if js.get("global_medium", -1) >= 0:
+                s["exterior"] = {"type": "ref", "id": f"medium{js['global_medium']}"}
         if emitters[mat]:
             s["emitter"] = emitters[mat]
         d[name] = s

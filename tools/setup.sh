@@ -4,7 +4,7 @@
 set -euo pipefail
 
 core=(build-essential cmake pkg-config
-      libglm-dev libstb-dev libglfw3-dev libepoxy-dev
+      libglm-dev libstb-dev libtinyexr-dev libglfw3-dev libepoxy-dev
       opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
       doctest-dev libyaml-cpp-dev libcli11-dev libfmt-dev
       xvfb xauth libgl1-mesa-dri python3

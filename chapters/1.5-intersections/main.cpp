@@ -234,8 +234,8 @@ int main(int argc, char** argv) {
       throw error("--method must be edge, mt or watertight, got '" + method_name + "'");
     const triangle_method method = by_name.at(method_name);
     const std::string ext = std::filesystem::path(out).extension().string();
-    if (ext != ".png" && ext != ".ppm" && ext != ".pfm")
-      throw error("unknown image type '" + ext + "' for " + out + " (use .png, .ppm or .pfm)");
+    if (ext != ".png" && ext != ".ppm" && ext != ".pfm" && ext != ".exr")
+      throw error("unknown image type '" + ext + "' for " + out + " (use .png, .ppm, .pfm or .exr)");
     if (rays < 1 || rays > 10000000) throw error("--rays must be in 1..10000000");
     stopwatch total;
     image img(width, height);

@@ -51,7 +51,16 @@ std::string scene_json(const scene& sc, int width, int height, int depth) {
     o << ", \"checker\": " << (m.albedo.type == texture::kind::checker ? "true" : "false")
       << ", \"fuzz\": " << m.fuzz << ", \"ior\": " << m.ior << ", \"radiance\": ";
     v3(m.radiance);
-    o << ", \"two_sided\": " << (m.two_sided ? "true" : "false") << "}";
+    o << ", \"two_sided\": " << (m.two_sided ? "true" : "false") << ", \"interior\": " << m.interior << "}";
+  }
+  o << "],\n  \"global_medium\": " << sc.global_medium << ",\n  \"media\": [";  // book 6.1
+  for (std::size_t i = 0; i < sc.media.size(); ++i) {
+    const medium& md = sc.media[i];
+    o << (i ? ",\n    " : "\n    ") << "{\"name\": \"" << md.name << "\", \"sigma_a\": ";
+    v3(md.sigma_a);
+    o << ", \"sigma_s\": ";
+    v3(md.sigma_s);
+    o << ", \"g\": " << md.g << "}";
   }
   o << "],\n  \"spheres\": [";
   for (std::size_t i = 0; i < sc.spheres.size(); ++i) {
@@ -115,7 +124,7 @@ int main(int argc, char** argv) {
   app.add_flag("--centre", centre, "sample every pixel at its centre (no anti-aliasing): the error against a "
                "reference made the same way is then the light transport's alone");
   app.add_option("--time-budget", budget, "stop doubling the samples after this many seconds (0 = no limit)");
-  app.add_option("--reference", reference, "reference image (.pfm): print the error after every pass");
+  app.add_option("--reference", reference, "reference image (.pfm or .exr): print the error after every pass");
   app.add_option("--report", report, "write the error table as CSV (needs --reference)");
   app.add_option("--pfm", pfm, "also write the linear image as PFM (e.g. to be a reference)");
   app.add_option("--export", json, "write the scene as JSON for tools/mitsuba_reference.py and stop");
@@ -139,7 +148,10 @@ int main(int argc, char** argv) {
     if (!report.empty() && reference.empty()) throw error("--report needs --reference");
     if (!json.empty()) {
       if (!sc.planes.empty()) throw error("--export: Mitsuba has no infinite plane; use a large quad");
+      for (const medium& md : sc.media)
+        if (!md.homogeneous()) throw error("--export: medium '" + md.name + "' is a density grid; only homogeneous media are exported");
       if (!sc.user_shapes.empty()) throw error("--export: a user shape ('" + sc.user_shapes[0].shape->name() + "') cannot be exported");
+      if (sc.environment) throw error("--export: the environment light ('" + sc.environment->name() + "') is not exported to Mitsuba yet");
       for (const material& m : sc.materials)
         if (is_custom(m)) throw error("--export: a custom BSDF ('" + m.bsdf->name() + "') cannot be exported");
         else if (is_microfacet(m))
@@ -151,7 +163,7 @@ int main(int argc, char** argv) {
     }
     std::optional<image> ref;
     if (!reference.empty()) {
-      ref = read_pfm(input_file(reference));
+      ref = read_float_image(input_file(reference));
       check_same_size(image(W, H), *ref);
     }
 

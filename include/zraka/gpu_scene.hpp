@@ -202,6 +202,13 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   if (!sc.user_shapes.empty())
     throw error("realtime: the scene has a user shape ('" + sc.user_shapes[0].shape->name() +
                 "'), which the OpenCL kernel cannot intersect; render it with pathtrace");
+  if (!sc.media.empty())  // book 6.1: the kernel has no free-flight sampling yet
+    throw error("realtime: the scene has participating media ('" + sc.media[0].name +
+                "'), which the OpenCL kernel does not render; render it with pathtrace");
+  if (sc.environment)  // the kernel has no environment light (a constant sky: settings.background, hit only)
+    throw error("realtime: the scene has an environment light ('" + sc.environment->name() +
+                "'), which the OpenCL kernel cannot sample; render it with pathtrace" +
+                (sc.environment->is_constant() ? ", or give the colour as settings.background (counted where rays find it)" : ""));
   for_each_object(sc, [&](object_ref o) {
     const material& m = sc.material_of(o);
     if (is_custom(m))

@@ -1,9 +1,10 @@
 #pragma once
 // Writing and reading images: PNG (8-bit sRGB, via stb_image_write), PPM P3 (the thesis's
-// "text file with the pixel matrix", also sRGB) and PFM (32-bit float, linear: for reference
-// images). Every write is atomic (see atomic_file.hpp). NaN and infinite pixels are never
-// written silently: they are counted, written as magenta in PNG/PPM, reported on stderr and
-// returned; PFM refuses them, since a reference image with NaN would poison every comparison.
+// "text file with the pixel matrix", also sRGB), PFM and OpenEXR (32-bit float, linear: for
+// reference images; EXR through tinyexr, which image viewers and Mitsuba read). Every write is
+// atomic (see atomic_file.hpp). NaN and infinite pixels are never written silently: they are
+// counted, written as magenta in PNG/PPM, reported on stderr and returned; PFM and EXR refuse
+// them, since a reference image with NaN would poison every comparison.
 #include <zraka/atomic_file.hpp>
 #include <zraka/image.hpp>
 #include <zraka/input_file.hpp>
@@ -14,6 +15,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -21,10 +23,12 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
+#include <tinyexr.h>
 
 namespace zraka {
 
@@ -159,14 +163,115 @@ inline image read_pfm(const std::filesystem::path& path) {
   return parse_pfm(read_input_file(path), path.string());  // a regular file within limits().file_bytes
 }
 
-// Writes by extension: .png, .ppm or .pfm.
+// [listing exr]
+// OpenEXR: three channels of 32-bit float (B, G, R: the order EXR files list them in), ZIP
+// compressed (lossless), scanlines top to bottom. Encoded in memory, then written atomically.
+inline void write_exr(const image& img, const std::filesystem::path& path) {
+  if (const std::size_t bad = img.count_nonfinite())
+    throw error("refusing to write " + path.string() + ": " + std::to_string(bad) + " NaN/inf pixel(s)");
+  const std::size_t n = img.pixels.size();
+  std::vector<float> planes(3 * n);  // B, G, R planes
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) planes[std::size_t(2 - c) * n + i] = img.pixels[i][c];
+  unsigned char* channels[3] = {reinterpret_cast<unsigned char*>(planes.data()),
+                                reinterpret_cast<unsigned char*>(planes.data() + n),
+                                reinterpret_cast<unsigned char*>(planes.data() + 2 * n)};
+  EXRHeader header;
+  InitEXRHeader(&header);
+  EXRImage exr;
+  InitEXRImage(&exr);
+  exr.images = channels;
+  exr.width = img.width;
+  exr.height = img.height;
+  exr.num_channels = 3;
+  EXRChannelInfo info[3] = {};
+  int types[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
+  for (int c = 0; c < 3; ++c) info[c].name[0] = "BGR"[c];
+  header.num_channels = 3;
+  header.channels = info;
+  header.pixel_types = types;            // as stored in `channels`
+  header.requested_pixel_types = types;  // as written: float, so that a reference round-trips exactly
+  header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+  unsigned char* memory = nullptr;
+  const char* err = nullptr;
+  const std::size_t size = SaveEXRImageToMemory(&exr, &header, &memory, &err);
+  if (size == 0 || !memory) {
+    const std::string why = err ? err : "unknown error";
+    if (err) FreeEXRErrorMessage(err);
+    std::free(memory);
+    throw error("cannot encode EXR " + path.string() + ": " + why);
+  }
+  std::string bytes(reinterpret_cast<const char*>(memory), size);
+  std::free(memory);
+  write_file_atomically(path, bytes);
+}
+
+// The RGB of an EXR file's bytes (a single-part scanline or tiled image; a one-channel image is
+// grey). Its size is checked before any pixel is decoded, and every pixel must be finite.
+inline image parse_exr(std::string_view bytes, const std::string& name) {
+  const auto* mem = reinterpret_cast<const unsigned char*>(bytes.data());
+  EXRVersion version;
+  if (ParseEXRVersionFromMemory(&version, mem, bytes.size()) != TINYEXR_SUCCESS)
+    throw error(name + ": not an OpenEXR file (no EXR version header)");
+  if (version.multipart || version.non_image)
+    throw error(name + ": a multi-part or deep EXR file; only single-part images are read");
+  auto fail = [&](const char* what, int code, const char* err) {
+    const std::string why = err ? err : ("tinyexr error " + std::to_string(code));
+    if (err) FreeEXRErrorMessage(err);
+    throw error(name + ": " + what + ": " + why);
+  };
+  EXRHeader header;
+  InitEXRHeader(&header);
+  const char* err = nullptr;
+  if (const int rc = ParseEXRHeaderFromMemory(&header, &version, mem, bytes.size(), &err); rc != TINYEXR_SUCCESS)
+    fail("malformed EXR header", rc, err);
+  const long long w = 1LL + header.data_window.max_x - header.data_window.min_x;
+  const long long h = 1LL + header.data_window.max_y - header.data_window.min_y;
+  FreeEXRHeader(&header);
+  try {
+    image::check_size(w, h);
+  } catch (const error& e) {
+    throw error(name + ": " + e.what());
+  }
+  float* rgba = nullptr;
+  int width = 0, height = 0;
+  if (const int rc = LoadEXRFromMemory(&rgba, &width, &height, mem, bytes.size(), &err); rc != TINYEXR_SUCCESS) {
+    std::free(rgba);
+    fail("cannot decode EXR", rc, err);
+  }
+  if (width != w || height != h) {
+    std::free(rgba);
+    throw error(name + ": the EXR pixels do not match its data window");
+  }
+  image img(width, height);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = rgb(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]);
+  std::free(rgba);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (!is_finite(img.at(x, y)))
+        throw error(name + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is NaN or infinite");
+  return img;
+}
+inline image read_exr(const std::filesystem::path& path) {
+  return parse_exr(read_input_file(path), path.string());
+}
+// [end]
+
+// Reads a float image (a reference): .exr as OpenEXR, any other name as PFM (whose reader
+// checks its header and says so when it is not one).
+inline image read_float_image(const std::filesystem::path& path) {
+  return path.extension() == ".exr" ? read_exr(path) : read_pfm(path);
+}
+
+// Writes by extension: .png, .ppm, .pfm or .exr.
 inline void write_image(const image& img, const std::filesystem::path& path) {
   check_output_name(path);  // "" or "folder/" say so, rather than "unknown image type ''"
   const auto ext = path.extension().string();
   if (ext == ".png") write_png(img, path);
   else if (ext == ".ppm") write_ppm(img, path);
   else if (ext == ".pfm") write_pfm(img, path);
-  else throw error("unknown image type '" + ext + "' for " + path.string() + " (use .png, .ppm or .pfm)");
+  else if (ext == ".exr") write_exr(img, path);
+  else throw error("unknown image type '" + ext + "' for " + path.string() + " (use .png, .ppm, .pfm or .exr)");
 }
 
 }  // namespace zraka

@@ -11,9 +11,12 @@
 //              uniform in area, p_A = 1/A, turned into solid angle: p = p_A d^2 / |cos theta_l|;
 //   mesh       a triangle chosen by area, then uniform on it: again p_A = 1/A of the whole mesh;
 //   point      one direction: a delta, pdf 1 (times the choice), Le = I / d^2.
+//   environment the scene's environment map (environment.hpp), sampled by its own distribution
+//              over directions; the shadow ray goes to infinity. Its power is estimated as
+//              pi R^2 times the integral of its radiance, R the radius of the scene's bounds.
 // Emission that cannot be sampled is counted only where a ray finds it ("hit only"): an
 // infinite plane (no finite area to pick a point on), a user shape that gives no area sampling,
-// and the background. describe() names them, so the choice is never silent.
+// and the plain background colour. describe() names them, so the choice is never silent.
 //
 // Lights are chosen in proportion to their power (emitted flux: mean radiance x area x pi, twice
 // that when two-sided; 4 pi I for a point light), or uniformly (light_selection::uniform, for
@@ -71,6 +74,7 @@ template <class T> class light_set_t {
     double power = 0;                           // emitted flux (mean over the channels)
     T area = T(0);                              // area lights
     std::uint32_t first = 0, count = 0;         // meshes: their triangles' range in the area table
+    bool environment = false;                   // the environment light (scene.environment)
   };
 
   explicit light_set_t(const scene_t<T>& sc, light_selection sel = light_selection::power)
@@ -90,6 +94,7 @@ template <class T> class light_set_t {
         throw error("lights: point light " + std::to_string(i) + " has a non-finite intensity");
       if (l.power > 0) lights_.push_back(l);
     }
+    add_environment();
     double total = 0;
     cdf_.assign(1, 0.0);
     for (const light& l : lights_) cdf_.push_back(total += weight(l));
@@ -136,6 +141,7 @@ template <class T> class light_set_t {
   // every light).
   std::optional<light_sample_t<T>> sample_one(int i, const hit_t<T>& h, const vec2_t<T>& u) const {
     const light& l = lights_[std::size_t(i)];
+    if (l.environment) return sample_environment(i, h, u);
     light_sample_t<T> s;
     s.light = i;
     if (l.point >= 0) {  // one direction; its "density" is a delta, reported as 1
@@ -200,13 +206,26 @@ template <class T> class light_set_t {
   }
   // [end]
 
+  // ---------------------------------------------------------------- the environment light
+  // Its index in the light set, or -1 (no environment, or one that is black).
+  int environment_index() const { return environment_; }
+  bool is_environment(int i) const { return i >= 0 && i == environment_; }
+  // The density with which sample() produces direction wi towards the environment (a
+  // BSDF-sampled ray that left the scene), the choice of the light included.
+  T environment_pdf(const vec3_t<T>& wi) const {
+    if (environment_ < 0) return T(0);
+    return sc_.environment->pdf(wi) * selection_pdf(environment_);
+  }
+  // The radius of the scene's bounds (the finite objects; at least 1e-3), for the power estimate.
+  T scene_radius() const { return radius_; }
+
   // "lights: 2 (1 quad, 1 point light), chosen by power; hit only: plane 0"
   std::string describe() const {
     std::array<int, 6> per_kind{};
     int points = 0;
     for (const light& l : lights_)
       if (l.point >= 0) ++points;
-      else ++per_kind[kind(l.object.kind)];
+      else if (!l.environment) ++per_kind[kind(l.object.kind)];
     static const char* names[] = {"sphere", "quad", "plane", "triangle", "mesh", "user shape"};
     std::string out = "lights: " + std::to_string(lights_.size());
     std::string parts;
@@ -216,6 +235,7 @@ template <class T> class light_set_t {
     };
     for (int k = 0; k < 6; ++k) part(per_kind[std::size_t(k)], names[k]);
     part(points, "point light");
+    if (environment_ >= 0) part(1, std::string(sc_.environment->is_constant() ? "constant" : "map") + " environment");
     if (!parts.empty()) out += " (" + parts + ")";
     out += selection_ == light_selection::power ? ", chosen by power" : ", chosen uniformly";
     if (!hit_only_.empty()) {
@@ -393,6 +413,39 @@ template <class T> class light_set_t {
     return surface_point_t<T>{p, t.normal(), g * (glm::abs(w * t.a) + glm::abs(b.x * t.b) + glm::abs(b.y * t.c))};
   }
 
+  // The environment as one more light (the top of this file).
+  void add_environment() {
+    if (!sc_.environment) return;
+    aabb_t<T> box;
+    for_each_object(sc_, [&](object_ref o) {
+      const aabb_t<T> b = object_bounds(sc_, o);
+      if (!b.empty() && is_finite(b.lo) && is_finite(b.hi)) box.grow(b);
+    });
+    radius_ = box.empty() ? T(1) : std::max(T(glm::length(box.hi - box.lo) / T(2)), T(1e-3));
+    centre_ = box.empty() ? vec3_t<T>(0) : (box.lo + box.hi) / T(2);
+    light l;
+    l.environment = true;
+    l.power = pi<double> * double(radius_) * double(radius_) * sc_.environment->integral();
+    if (!std::isfinite(l.power)) throw error("lights: the environment " + sc_.environment->name() + " has infinite power");
+    if (!(l.power > 0)) return;  // black: nothing to sample (rays that leave still see it)
+    environment_ = int(lights_.size());
+    lights_.push_back(l);
+  }
+  // [listing sample-environment]
+  std::optional<light_sample_t<T>> sample_environment(int i, const hit_t<T>& h, const vec2_t<T>& u) const {
+    light_sample_t<T> s;
+    s.light = i;
+    s.wi = sc_.environment->sample(u, s.pdf);
+    if (!(s.pdf > T(0)) || !std::isfinite(s.pdf)) return std::nullopt;
+    s.Le = sc_.environment->radiance(s.wi);
+    // A point beyond the scene's bounds in that direction (for whoever needs one); the shadow
+    // ray itself never ends: anything in the way occludes.
+    s.point = h.p + s.wi * (T(2) * radius_ + glm::length(h.p - centre_));
+    s.shadow = {spawn_ray(h, s.wi), infinity<T>};
+    return s;
+  }
+  // [end]
+
   const scene_t<T>& sc_;
   light_selection selection_;
   std::vector<light> lights_;
@@ -401,6 +454,9 @@ template <class T> class light_set_t {
   std::vector<double> triangle_cdf_;  // meshes: their triangles' areas, summed (count + 1 entries each)
   std::array<std::vector<int>, 6> index_;  // per shape kind: object index -> light index, or -1
   std::vector<std::string> hit_only_;
+  int environment_ = -1;     // the environment light's index, or -1
+  T radius_ = T(1);          // the scene's bounding sphere (for the environment's power)
+  vec3_t<T> centre_{T(0)};
 };
 
 using light_set = light_set_t<double>;

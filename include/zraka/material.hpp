@@ -58,6 +58,7 @@ struct material {
   std::shared_ptr<const custom_bsdf> bsdf;     // set: a user-defined BSDF (custom_bsdf.hpp)
   double roughness = 0.1;                      // rough_*: the GGX alpha (microfacet.hpp), (0, 1]
   conductor_fresnel conductor;                 // rough_conductor: eta + i k per channel, or F0
+  int interior = -1;  // media (book 6.1): scene.media index inside this closed shape; -1 no change
 
   static material lambertian(rgb albedo) { return lambertian(texture::solid(albedo)); }
   static material lambertian(texture albedo) {
@@ -124,6 +125,13 @@ struct material {
     if (!(r > 0 && r <= 1))
       throw error(std::string(kind) + ": roughness (the GGX alpha) must be in (0, 1], got " + std::to_string(r));
   }
+  // A boundary only (book 6.1): an index-matched interface (a dielectric of ior 1) that rays
+  // cross unchanged; it marks where a medium begins (interior) without refracting.
+  static material boundary(int interior_medium) {
+    material m = dielectric(1.0);
+    m.interior = interior_medium;
+    return m;
+  }
   static material phong(rgb kd, rgb ks, double shininess) {
     material m;
     m.kind = material_kind::phong;
@@ -172,6 +180,10 @@ template <class T> rgb emitted(const material& m, const hit_t<T>& h) {
   return h.front_face || m.two_sided ? m.radiance : rgb(0);
 }
 inline bool emits(const material& m) { return m.radiance != rgb(0); }
+// Index-matched: light crosses it unchanged (media.hpp lets paths and shadow rays through).
+inline bool is_index_matched(const material& m) {
+  return !m.bsdf && m.kind == material_kind::dielectric && m.ior == 1.0 && !emits(m);
+}
 
 template <class T> struct scatter_t {
   vec3_t<T> direction;  // unit, away from the surface

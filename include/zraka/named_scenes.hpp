@@ -61,7 +61,7 @@ struct named_scene {
 
 // Every accepted name, in the order --help lists them. scenes/cornell*.yaml hold the same
 // Cornell boxes as the C++ (chapter 2.3's smoke test checks it bit for bit).
-inline constexpr std::array<named_scene, 15> named_scenes{{
+inline constexpr std::array<named_scene, 17> named_scenes{{
     {"cornell", [] { return cornell_box<double>(cornell_variant::boxes); }, "the Cornell box with two white boxes"},
     {"cornell-glass", [] { return cornell_box<double>(cornell_variant::glass); }, "the tall box and a glass sphere"},
     {"cornell-spheres", [] { return cornell_box<double>(cornell_variant::spheres); }, "a mirror and a glass sphere"},
@@ -78,6 +78,9 @@ inline constexpr std::array<named_scene, 15> named_scenes{{
     {"ajar-door", nullptr, "scenes/ajar-door.yaml: lit through a door's gap"},
     {"tiny-light", nullptr, "scenes/tiny-light.yaml: a light of 0.5 mm, 1e6 times as bright"},
     {"smallpt-walls", nullptr, "scenes/smallpt-walls.yaml: walls that are spheres of radius 1e5"},
+    // Participating media (book 6.1).
+    {"fog-cornell", nullptr, "scenes/fog-cornell.yaml: the Cornell box in smoke, lit through a hole"},
+    {"milk-glass", nullptr, "scenes/milk-glass.yaml: a glass ball full of milk"},
 }};
 
 // "cornell, cornell-glass, ..." for --help and error messages.

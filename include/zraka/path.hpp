@@ -13,13 +13,24 @@
 //   mis    multiple importance sampling (Veach and Guibas 1995): the light sample and the
 //          BSDF-sampled ray that hits a light are both kept, each weighted by the power heuristic
 //          of the two densities for its direction, so the two weights of one path sum to one.
-// Emission nobody samples (the background, an infinite plane: lights.hpp) is always counted
-// where a ray finds it. Paths stop at max_depth bounces and, from rr_depth bounces on, go on
-// with probability q = min(1, max throughput), dividing by q (Russian roulette: unbiased).
+// Emission nobody samples (the background colour, an infinite plane: lights.hpp) is always
+// counted where a ray finds it; the environment light (environment.hpp) is sampled like any
+// light, and a ray that leaves the scene finds it. Paths stop at max_depth bounces and, from
+// rr_depth bounces on, go on with probability q = min(1, max throughput), dividing by q
+// (Russian roulette: unbiased).
 //
-// The OpenCL kernel (kernels/pathtrace.cl) mirrors this loop line for line.
+// Participating media (book 6.1, media.hpp): in a medium each segment first samples a
+// free-flight distance (medium.hpp); a medium event is a vertex like a surface's, with the phase
+// function as its BSDF: next-event estimation with a transmittance-weighted shadow ray, MIS with
+// phase sampling. Index-matched boundaries are crossed without counting a bounce. All of it runs
+// only when the scene has media: other scenes draw exactly the numbers they always did.
+//
+// The OpenCL kernel (kernels/pathtrace.cl) mirrors this loop line for line (without media:
+// gpu_scene.hpp refuses them).
 #include <zraka/lights.hpp>
 #include <zraka/material.hpp>
+#include <zraka/media.hpp>
+#include <zraka/phase.hpp>
 #include <zraka/rng.hpp>
 #include <zraka/scene.hpp>
 #include <zraka/scene_query.hpp>
@@ -53,6 +64,7 @@ struct path_options {
   int max_depth = 8;  // bounces; 0 = only what the camera ray hits (the thesis's depth 1)
   int rr_depth = 3;   // Russian roulette from this many bounces on
   light_selection lights = light_selection::power;
+  medium_options media;  // book 6.1: delta tracking or ray marching (medium.hpp)
 };
 
 // The power heuristic (exponent 2) for a sample of density a, the other technique's being b.
@@ -83,16 +95,68 @@ rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r
   bool specular = true;  // the last bounce had no density (camera rays count as specular)
   T bsdf_pdf = T(0);     // the density of the last scattered direction
   vec3_t<T> from(T(0));  // the point it left from
+  const bool media = !sc.media.empty();
+  int current = sc.global_medium;  // the medium the path is in (-1: none)
   for (int bounce = 0;; ++bounce) {
     scene_hit_t<T> sh;
     ++rays;
-    if (!nearest_hit(sc, r, sh)) return L + beta * sc.background;  // no sampler knows the sky
+    const bool found = nearest_hit(sc, r, sh);
+    if (media && current >= 0) {  // in a medium: does the path interact before the surface?
+      const medium& md = sc.media[std::size_t(current)];
+      const auto f = sample_flight(md, r, found ? sh.h.t : infinity<T>, g, opt.media);
+      beta *= f.weight;
+      if (f.scattered) {  // a medium event: the phase function is this vertex's BSDF
+        if (bounce == opt.max_depth || beta == rgb(0)) return L;
+        hit_t<T> mh;  // a point in space: no normal, no rounding to step off
+        mh.p = r.at(f.t);
+        const phase_t<T> ph{T(md.g)};
+        const vec3_t<T> wo = -r.direction;
+        if (nee) {
+          const T u_select = T(g.uniform());
+          const vec2_t<T> u(g.uniform2());
+          if (const auto e = lights.sample(mh, u_select, u); e && e->Le != rgb(0)) {
+            ++rays;
+            const rgb tr = shadow_transmittance(sc, e->shadow, current, g, opt.media, rays);
+            if (tr != rgb(0)) {
+              const T p = ph.eval(wo, e->wi);
+              const T w = mis && !e->delta ? power_heuristic(e->pdf, p) : T(1);
+              L += beta * tr * e->Le * float(p * w / e->pdf);
+            }
+          }
+        }
+        const phase_sample_t<T> ps = ph.sample(wo, vec2_t<T>(g.uniform2()));  // weight p / pdf = 1
+        specular = false;
+        bsdf_pdf = ps.pdf;
+        from = mh.p;
+        if (!survives_roulette(beta, bounce, opt, g)) return L;
+        r = ray_t<T>(mh.p, ps.wi);
+        continue;
+      }
+    }
+    if (!found) {
+      if (!sc.environment) return L + beta * sc.background;  // no sampler knows a plain background
+      // The environment light, found by this ray: by the same rule as emission below.
+      const rgb Le = sc.environment->radiance(r.direction);
+      if (!nee || specular || lights.environment_index() < 0) return L + beta * Le;
+      if (mis) return L + beta * Le * float(power_heuristic(bsdf_pdf, lights.environment_pdf(r.direction)));
+      return L;
+    }
     const material& m = sc.materials[std::size_t(sh.material)];
+    if (media && is_index_matched(m)) {  // a boundary only: cross it, not a bounce
+      current = medium_after(sc, current, m, sh.h, r.direction);
+      r = spawn_ray(sh.h, r.direction);
+      --bounce;
+      continue;
+    }
     // Emission found by this ray: all of it, its MIS share, or none (nee: the light sample at
     // the previous hit counted this light already).
     if (const rgb Le = emitted(m, sh.h); Le != rgb(0)) {
       if (!nee || specular || lights.index_of(sh.object) < 0) L += beta * Le;
-      else if (mis) L += beta * Le * float(power_heuristic(bsdf_pdf, lights.pdf(sh.object, from, r.direction, sh.h)));
+      else if (mis && media) {  // the ray may have crossed boundaries since `from`: its t is not the distance
+        hit_t<T> lh = sh.h;
+        lh.t = glm::length(sh.h.p - from);
+        L += beta * Le * float(power_heuristic(bsdf_pdf, lights.pdf(sh.object, from, r.direction, lh)));
+      } else if (mis) L += beta * Le * float(power_heuristic(bsdf_pdf, lights.pdf(sh.object, from, r.direction, sh.h)));
     }
     if (bounce == opt.max_depth) return L;
     const vec3_t<T> wo = -r.direction;
@@ -103,9 +167,12 @@ rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r
         const rgb f_cos = brdf_cos(m, sh.h, wo, e->wi);
         if (f_cos != rgb(0)) {
           ++rays;
-          if (!occluded(sc, e->shadow)) {
+          const rgb tr = !media ? rgb(occluded(sc, e->shadow) ? 0.0f : 1.0f)
+                                : shadow_transmittance(sc, e->shadow, medium_after(sc, current, m, sh.h, e->wi), g,
+                                                       opt.media, rays);
+          if (tr != rgb(0)) {
             const T w = mis && !e->delta ? power_heuristic(e->pdf, scatter_pdf(m, sh.h, wo, e->wi)) : T(1);
-            L += beta * f_cos * e->Le * float(w / e->pdf);
+            L += beta * tr * f_cos * e->Le * float(w / e->pdf);
           }
         }
       }
@@ -116,6 +183,7 @@ rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r
     specular = s->specular;
     bsdf_pdf = s->pdf;
     from = sh.h.p;
+    if (media) current = medium_after(sc, current, m, sh.h, s->direction);
     if (!survives_roulette(beta, bounce, opt, g)) return L;
     r = spawn_ray(sh.h, s->direction);
   }
@@ -131,6 +199,7 @@ template <class T> struct path_tracer_t {
   path_tracer_t(const scene_t<T>& scene, const path_options& o) : sc(scene), lights(scene, o.lights), opt(o) {
     if (o.max_depth < 0) throw error("the maximum depth must not be negative, got " + std::to_string(o.max_depth));
     if (o.rr_depth < 0) throw error("the Russian roulette depth must not be negative");
+    check_media(scene, o.media);
     if (o.method == integrator::naive && !scene.point_lights.empty())
       throw error("integrator naive: the scene has " + std::to_string(scene.point_lights.size()) +
                   " point light(s), which a ray can never hit; use nee or mis");

@@ -53,6 +53,12 @@ constexpr std::uint32_t photon_stream = 0x80000000u;
 // Photon mapping cannot start photons at emitters the light set does not sample (the
 // background, an infinite plane, a user shape without area sampling): refuse them by name.
 template <class T> void check_photon_scene(const scene_t<T>& sc, const light_set_t<T>& lights) {
+  if (!sc.media.empty())
+    throw error("photon mapping: the scene has participating media (" + sc.media_names() +
+                "), which these photons do not scatter in (no volume photons); render it with pathtrace");
+  if (sc.environment)
+    throw error("photon mapping: the scene has an environment light ('" + sc.environment->name() +
+                "'), which photons cannot be emitted from (no environment emission); render it with pathtrace");
   if (sc.background != rgb(0))
     throw error("photon mapping: the background emits, and photons cannot leave it (no environment emission)");
   if (!lights.hit_only().empty()) {

@@ -9,7 +9,7 @@
 //   if (const auto done = opt.parse(argc, argv)) return *done;   // --help, or error: ... exit 1
 //
 // The convention (book/README.md): --out is a full file name whose extension picks the format
-// (.png, .ppm, .pfm); a bare file name run from inside the checkout lands in build/out/, never
+// (.png, .ppm, .pfm, .exr); a bare file name run from inside the checkout lands in build/out/, never
 // loose in the repository (a name with a folder is taken as given); --scene is a name from named_scenes.hpp or a .yaml path; --help
 // shows every default; a bad value is "error: ..." and exit code 1.
 #include <zraka/atomic_file.hpp>
@@ -88,7 +88,7 @@ struct program_options {
   std::uint64_t seed = 1;
   int threads = 0;  // 0 = all cores
   std::string out;  // a full file name; its extension picks the format
-  std::vector<std::string> out_types{".png", ".ppm", ".pfm"};
+  std::vector<std::string> out_types{".png", ".ppm", ".pfm", ".exr"};
   std::string scene = "cornell";  // a name from named_scenes.hpp or a .yaml path
   std::string scene_names;        // for --help: named_scene_list() (this header needs no scene types)
   // true: size, spp, depth and seed default to the scene's own settings (apply_to); --help says so.

@@ -12,7 +12,9 @@
 // them to pay; planes are infinite and are always tested.
 #include <zraka/bvh.hpp>
 #include <zraka/camera.hpp>
+#include <zraka/environment.hpp>
 #include <zraka/material.hpp>
+#include <zraka/medium.hpp>
 #include <zraka/mesh.hpp>
 #include <zraka/plane.hpp>
 #include <zraka/quad.hpp>
@@ -84,11 +86,25 @@ template <class T> struct scene_t {
   std::vector<mesh_object_t<T>> meshes;
   std::vector<object_t<user_shape_ptr<T>>> user_shapes;
   std::vector<point_light_t<T>> point_lights;
-  rgb background{0};               // radiance of rays that leave the scene
+  rgb background{0};               // radiance of rays that leave the scene (hit only)
+  // The environment light (environment.hpp): when set, rays that leave the scene see it instead
+  // of the background, and the lights sample it (lights.hpp).
+  std::shared_ptr<const environment_map> environment;
   rgb ambient{0};                  // Whitted only: Phong's ambient light I_a
   camera_t<T> camera;
   render_settings settings;
   acceleration accel;              // empty: every object is tested
+  // Participating media (book 6.1): a material's `interior` names one by index; global_medium
+  // fills everything outside those shapes (fog: the camera starts in it), -1 for clear air.
+  std::vector<medium> media;
+  int global_medium = -1;
+
+  // "fog, milk": for the renderers that cannot trace media and refuse the scene by name.
+  std::string media_names() const {
+    std::string s;
+    for (const medium& m : media) s += (s.empty() ? "" : ", ") + m.name;
+    return s;
+  }
 
   int add_material(const material& m) {
     materials.push_back(m);
@@ -122,6 +138,11 @@ template <class T> struct scene_t {
     return push(user_shapes, std::move(s), mat, shape_kind::user);
   }
   void add(const point_light_t<T>& l) { point_lights.push_back(l); }
+  int add_medium(const medium& m) {
+    m.check();
+    media.push_back(m);
+    return static_cast<int>(media.size()) - 1;
+  }
 
   int material_index(object_ref o) const;
   const material& material_of(object_ref o) const { return materials[std::size_t(material_index(o))]; }

@@ -21,6 +21,7 @@
 // Needs yaml-cpp (link yaml-cpp).
 #include <zraka/affine.hpp>
 #include <zraka/bpt.hpp>
+#include <zraka/environment_file.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
 #include <zraka/input_file.hpp>
@@ -132,9 +133,11 @@ class scene_reader {
     check_yaml_size(root);
     if (!root || root.IsNull()) throw error(name_ + ": the scene file is empty");
     if (!root.IsMap()) fail(root, "", "a scene file is a map with the sections settings, camera, materials, lights, objects");
-    keys(root, "", {"settings", "camera", "materials", "lights", "objects"});
+    keys(root, "", {"settings", "camera", "media", "materials", "lights", "objects", "environment"});
 
+    media(root["media"]);  // first: settings and materials name media
     settings(root["settings"]);
+    environment(root["environment"], root);
     camera(root["camera"]);
     materials(root["materials"]);
     lights(root["lights"]);
@@ -156,6 +159,7 @@ class scene_reader {
   loaded_scene out_;
   YAML::Node resolved_;
   std::map<std::string, int> material_index_;
+  std::map<std::string, int> medium_index_;
   std::uint64_t triangles_ = 0;  // so far, against limits().triangles
 
   // ---------------------------------------------------------------- errors
@@ -299,7 +303,8 @@ class scene_reader {
   void settings(const YAML::Node& n) {
     render_settings& s = out_.sc.settings;
     if (n) {
-      keys(n, "settings", {"width", "height", "spp", "max_depth", "seed", "background", "ambient"});
+      keys(n, "settings", {"width", "height", "spp", "max_depth", "seed", "background", "ambient", "medium"});
+      if (n["medium"]) out_.sc.global_medium = medium_named(n["medium"], "settings.medium");
       const long long big = 1LL << 40;
       if (n["width"]) s.width = int(integer(n["width"], "settings.width", 1, image::max_side));
       if (n["height"]) s.height = int(integer(n["height"], "settings.height", 1, image::max_side));
@@ -324,7 +329,107 @@ class scene_reader {
     r["seed"] = s.seed;
     r["background"] = flow(out_.sc.background);
     r["ambient"] = flow(out_.sc.ambient);
+    if (out_.sc.global_medium >= 0) r["medium"] = out_.sc.media[std::size_t(out_.sc.global_medium)].name;
   }
+
+  // [listing media-section]
+  // media: {fog: {sigma_a: 0.01, sigma_s: [0.1, 0.1, 0.12], g: 0.3,
+  //               density: {min: [..], max: [..], resolution: 24, frequency: 2.5, seed: 1}}}
+  // A density makes the medium heterogeneous: sigma times a noise cloud in [0, 1] over the box.
+  void media(const YAML::Node& n) {
+    if (!n) return;
+    if (!n.IsMap()) fail(n, "media", "expected a map of name: {sigma_a, sigma_s, g, density}, got " + scalar_text(n));
+    for (const auto& kv : n) {
+      if (!kv.first.IsScalar()) fail(kv.first, "media", "a medium name must be a plain word");
+      const std::string name = kv.first.Scalar(), path = "media." + name;
+      if (medium_index_.count(name)) fail(kv.first, path, "duplicate name");
+      const YAML::Node m = kv.second;
+      keys(m, path, {"sigma_a", "sigma_s", "g", "density"});
+      medium md;
+      md.name = name;
+      if (m["sigma_a"]) md.sigma_a = colour(m["sigma_a"], path + ".sigma_a");
+      if (m["sigma_s"]) md.sigma_s = colour(m["sigma_s"], path + ".sigma_s");
+      if (m["g"]) {
+        md.g = number(m["g"], path + ".g");
+        if (!(md.g > -1 && md.g < 1)) fail(m["g"], path + ".g", "must be in (-1, 1), got " + m["g"].Scalar());
+      }
+      YAML::Node r;
+      r["sigma_a"] = flow(md.sigma_a);
+      r["sigma_s"] = flow(md.sigma_s);
+      r["g"] = num(md.g);
+      if (const YAML::Node d = m["density"]) {
+        const std::string dp = path + ".density";
+        keys(d, dp, {"min", "max", "resolution", "frequency", "seed"});
+        const vec3 lo = vector3(required(d, "min", dp), dp + ".min"), hi = vector3(required(d, "max", dp), dp + ".max");
+        if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) fail(d, dp, "min must be below max on every axis");
+        const int res = d["resolution"] ? int(integer(d["resolution"], dp + ".resolution", 2, 256)) : 24;
+        const double freq = d["frequency"] ? number(d["frequency"], dp + ".frequency") : 2.5;
+        if (!(freq > 0 && freq <= 64)) fail(d["frequency"], dp + ".frequency", "must be in (0, 64]");
+        const auto seed = std::uint64_t(d["seed"] ? integer(d["seed"], dp + ".seed", 0, 1LL << 40) : 1);
+        md.density = std::make_shared<density_grid>(density_grid::noise(aabb{lo, hi}, res, freq, seed));
+        YAML::Node rd;
+        rd["min"] = flow(lo);
+        rd["max"] = flow(hi);
+        rd["resolution"] = res;
+        rd["frequency"] = num(freq);
+        rd["seed"] = seed;
+        r["density"] = rd;
+      }
+      try {
+        md.check();
+      } catch (const error& e) {
+        fail(m, path, e.what());
+      }
+      medium_index_[name] = out_.sc.add_medium(md);
+      resolved_["media"][name] = r;
+    }
+  }
+  int medium_named(const YAML::Node& n, const std::string& field) const {
+    const std::string name = text(n, field);
+    const auto it = medium_index_.find(name);
+    if (it == medium_index_.end()) {
+      std::string list;
+      for (const auto& [k, v] : medium_index_) list += (list.empty() ? "" : ", ") + k;
+      fail(n, field, "unknown medium '" + name + "' (the media section has: " + (list.empty() ? "none" : list) + ")");
+    }
+    return it->second;
+  }
+  // [end]
+
+  // [listing scene-environment]
+  // environment: {file: sky.hdr, scale: 1, rotate: 0}  or  {color: [r, g, b], scale: 1}
+  void environment(const YAML::Node& n, const YAML::Node& root) {
+    if (!n) return;
+    if (!n.IsMap()) fail(n, "environment", "expected {file: ..., scale: ..., rotate: ...} or {color: [r, g, b]}, got " + scalar_text(n));
+    keys(n, "environment", {"file", "color", "scale", "rotate"});
+    if (bool(n["file"]) == bool(n["color"])) fail(n, "environment", "give exactly one of file and color");
+    if (root["settings"] && root["settings"]["background"])
+      fail(root["settings"]["background"], "settings.background",
+           "the scene has an environment, which rays that leave the scene see; give one or the other");
+    const double scale = n["scale"] ? number(n["scale"], "environment.scale") : 1.0;
+    if (scale < 0) fail(n["scale"], "environment.scale", "must not be negative, got " + n["scale"].Scalar());
+    const double rotate = n["rotate"] ? number(n["rotate"], "environment.rotate") : 0.0;
+    YAML::Node r = resolved_["environment"];
+    if (n["color"]) {
+      const rgb c = colour(n["color"], "environment.color");
+      out_.sc.environment = std::make_shared<environment_map>(environment_map::constant(c, float(scale), rotate));
+      r["color"] = flow(c);
+    } else {
+      const std::filesystem::path file = find_file(n["file"], "environment.file");
+      try {
+        out_.sc.environment = std::make_shared<environment_map>(load_environment(file, float(scale), rotate));
+      } catch (const error& e) {  // name the file as the scene does, not by its full path
+        std::string msg = e.what();
+        if (msg.rfind(file.string(), 0) == 0) msg = n["file"].Scalar() + msg.substr(file.string().size());
+        fail(n["file"], "environment.file", msg);
+      }
+      r["file"] = n["file"].Scalar();
+    }
+    r["scale"] = num(scale);
+    r["rotate"] = num(rotate);
+    resolved_["settings"].remove("background");  // the resolved scene must load again
+  }
+  // [end]
 
   void camera(const YAML::Node& n) {
     camera_t<double>& c = out_.sc.camera;
@@ -418,6 +523,7 @@ class scene_reader {
         case material_kind::dielectric:
           r["type"] = "dielectric";
           r["ior"] = num(m.ior);
+          if (m.interior >= 0) r["medium"] = out_.sc.media[std::size_t(m.interior)].name;
           break;
         case material_kind::emitter:
           r["type"] = "emitter";
@@ -475,12 +581,16 @@ class scene_reader {
         if (m.fuzz < 0 || m.fuzz > 1) fail(n["fuzz"], path + ".fuzz", "must be in [0, 1], got " + n["fuzz"].Scalar());
       }
     } else if (type == "dielectric") {
-      keys(n, path, {"type", "ior"});
+      keys(n, path, {"type", "ior", "medium"});
       m.kind = material_kind::dielectric;
       if (n["ior"]) {
         m.ior = number(n["ior"], path + ".ior");
         if (!(m.ior > 0)) fail(n["ior"], path + ".ior", "must be positive, got " + n["ior"].Scalar());
       }
+      if (n["medium"]) m.interior = medium_named(n["medium"], path + ".medium");
+    } else if (type == "boundary") {  // book 6.1: a medium's shape, no refraction (a dielectric of ior 1)
+      keys(n, path, {"type", "medium"});
+      m = material::boundary(medium_named(required(n, "medium", path), path + ".medium"));
     } else if (type == "emitter") {
       keys(n, path, {"type", "radiance"});
       m = material::emitter(rgb(scene_file_defaults::area_light_radiance));

@@ -39,7 +39,7 @@ inline const std::vector<std::string>& builtin_object_types() {
 }
 inline const std::vector<std::string>& builtin_material_types() {
   static const std::vector<std::string> v = {"lambertian", "metal", "dielectric", "emitter", "phong",
-                                              "rough_conductor", "rough_dielectric"};
+                                              "rough_conductor", "rough_dielectric", "boundary"};
   return v;
 }
 

@@ -50,16 +50,8 @@
 #include <utility>
 #include <vector>
 
-// PNG reading for reference images. If the including program already included stb_image.h
-// itself, its declarations (and its one implementation) are used instead; a program that
-// compiles stb_image's implementation itself must include it before this header, not after.
-#ifndef STBI_INCLUDE_STB_IMAGE_H
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
-#include <stb/stb_image.h>
-#undef STB_IMAGE_IMPLEMENTATION
-#endif
+// PNG reading for reference images (stb_image.hpp: stb_image, once, with PNG and HDR).
+#include <zraka/stb_image.hpp>
 
 namespace zraka::testing {
 
@@ -320,16 +312,16 @@ inline image to_display(const image& linear) {
   return out;
 }
 
-// Compares against a reference file: a .pfm is compared in linear values; a .png in the 8-bit
+// Compares against a reference file: a .pfm or .exr is compared in linear values; a .png in the 8-bit
 // display values the PNG writer produces (so an identical render differs by exactly 0).
 inline result image_matches_file(const image& got, const std::filesystem::path& reference,
                                  const image_tolerance& tol) {
   result r;
   try {
     const std::string ext = reference.extension().string();
-    if (ext == ".pfm") r = images_match(got, read_pfm(reference), tol, "linear");
+    if (ext == ".pfm" || ext == ".exr") r = images_match(got, read_float_image(reference), tol, "linear");
     else if (ext == ".png") r = images_match(to_display(got), read_png_display(reference), tol, "8-bit display values");
-    else throw error("reference " + reference.string() + " is neither .pfm nor .png");
+    else throw error("reference " + reference.string() + " is neither .pfm, .exr nor .png");
   } catch (const std::exception& e) {
     return {false, e.what()};
   }

@@ -9,7 +9,8 @@
 // and each of those colours is the same computation one level deeper: a tree of rays. The
 // recursion stops at max_depth (black: nothing more is known there), where a branch's weight
 // falls below min_weight (Whitted 1980's adaptive depth), or when a ray leaves the scene
-// (the background colour).
+// (the background colour, or the environment map when the scene has one: seen along rays, it
+// does not light diffuse surfaces here, which would need an integral over it).
 //
 // Local light uses the normalised Phong (or Blinn-Phong) lobe of bxdf.hpp, so a Whitted image
 // and a path-traced one agree on direct light; with point lights it is exact, with area lights
@@ -74,6 +75,7 @@ rgb direct_light(const scene_t<T>& sc, const light_set_t<T>& lights, const scene
   const vec3_t<T> ng = sh.h.facing_normal();
   rgb L(0);
   for (int k = 0; k < int(lights.size()); ++k) {  // every light, not one chosen at random
+    if (lights.is_environment(k)) continue;  // the sky is Whitted's background, seen by rays only
     const vec2_t<T> u(g.uniform2());
     const auto ls = lights.sample_one(k, sh.h, u);
     if (!ls || ls->Le == rgb(0) || !(glm::dot(ls->wi, ng) > T(0))) continue;  // behind the surface
@@ -94,7 +96,8 @@ rgb whitted_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, const r
                      const whitted_options& opt, std::uint64_t& rays, int depth = 0, float weight = 1.0f) {
   scene_hit_t<T> sh;
   ++rays;
-  if (!nearest_hit(sc, r, sh)) return sc.background;  // the nearest, not the first in the list
+  if (!nearest_hit(sc, r, sh))  // the nearest, not the first in the list
+    return sc.environment ? sc.environment->radiance(r.direction) : sc.background;
   const material& m = sc.materials[std::size_t(sh.material)];
   const hit_t<T>& h = sh.h;
   const vec3_t<T> wo = -r.direction;
@@ -151,6 +154,9 @@ rgb whitted_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, const r
 // Whitted's local model knows the built-in materials only: a custom BSDF or a microfacet
 // material used by an object is refused by name rather than drawn as something else.
 template <class T> void check_whitted_scene(const scene_t<T>& sc) {
+  if (!sc.media.empty())
+    throw error("whitted: the scene has participating media (" + sc.media_names() +
+                "), which the Whitted ray tracer cannot render; render it with pathtrace");
   for_each_object(sc, [&](object_ref o) {
     const material& m = sc.material_of(o);
     if (is_custom(m))

@@ -50,6 +50,21 @@ def write(name, data):
     assert os.path.getsize(name) < 1 << 20, f"{name}: a hostile input must stay under 1 MB"
 
 
+def exr_header(w, h):
+    """A single-part scanline OpenEXR header for w x h RGB float pixels, without the pixels."""
+    import struct
+    def attr(name, kind, value):
+        return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(value)) + value
+    channels = b"".join(c.encode() + b"\0" + struct.pack("<iBBBBii", 2, 0, 0, 0, 0, 1, 1) for c in "BGR") + b"\0"
+    box = struct.pack("<iiii", 0, 0, w - 1, h - 1)
+    return (b"\x76\x2f\x31\x01" + struct.pack("<i", 2) + attr("channels", "chlist", channels) +
+            attr("compression", "compression", b"\0") + attr("dataWindow", "box2i", box) +
+            attr("displayWindow", "box2i", box) + attr("lineOrder", "lineOrder", b"\0") +
+            attr("pixelAspectRatio", "float", struct.pack("<f", 1)) +
+            attr("screenWindowCenter", "v2f", struct.pack("<ff", 0, 0)) +
+            attr("screenWindowWidth", "float", struct.pack("<f", 1)) + b"\0")
+
+
 def make_inputs():
     # Billion laughs: nine levels of ten aliases are 10^9 nodes once expanded.
     lines = ["a0: &a0 [lol, lol, lol, lol, lol, lol, lol, lol, lol, lol]"]
@@ -89,6 +104,9 @@ def make_inputs():
     nan_px = bytes.fromhex("00000000") + bytes.fromhex("0000c07f") + bytes.fromhex("00000000")
     write("nan.pfm", b"PF\n24 24\n-1.0\n" + nan_px * (24 * 24))
     write("huge.pfm", b"PF\n16384 8192\n-1.0\n")
+    # OpenEXR headers: one that declares 16384 x 8192 float pixels (and holds none), one cut short.
+    write("huge.exr", exr_header(16384, 8192))
+    write("cut.exr", exr_header(24, 24)[:60])
 
 
 def cases(scenes, pathtrace):
@@ -147,6 +165,9 @@ def cases(scenes, pathtrace):
         ("--reference a FIFO", PT + ["--reference", "fifo.pfm"], 1, r"fifo.pfm: is a FIFO", None),
         ("--reference a 134 M-pixel header", PT + ["--reference", "huge.pfm"], 1,
          r"huge.pfm: the image size 16384x8192 in pixels is 134217728, more than the limit", None),
+        ("--reference an EXR header of 134 M pixels", PT + ["--reference", "huge.exr"], 1,
+         r"huge.exr: the image size 16384x8192 in pixels is 134217728, more than the limit", None),
+        ("--reference a truncated EXR", PT + ["--reference", "cut.exr"], 1, r"cut.exr: malformed EXR header", None),
         ("--limit with an unknown name", PT + ["--limit", "memory=1"], 1, r"error: --limit: unknown limit 'memory'", None),
         ("--limit with a negative value", PT + ["--limit", "triangles=-5"], 1,
          r"error: --limit triangles: expected a positive integer, got '-5'", None),
