@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
   std::vector<int> divs_list{8, 32, 128};
   int width = 256, height = 256, random_count = 65536, repeat = 3;
   std::uint64_t seed = 1;
-  CLI::App app{"Benchmark (book 5.2): zraka's triangle BVH vs Embree 3 rtcIntersect1, one thread"};
+  zraka::cli_app app{"Benchmark (book 5.2): zraka's triangle BVH vs Embree 3 rtcIntersect1, one thread"};
   app.add_option("--divs", divs_list, "teapot tessellation levels (2 divs^2 triangles per patch)");
   app.add_option("--width", width, "camera rays: image width");
   app.add_option("--height", height, "camera rays: image height");

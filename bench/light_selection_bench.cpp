@@ -9,7 +9,7 @@
 #include <zraka/path.hpp>
 #include <zraka/progressive.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <cstdio>
 
@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
   int W = 64, H = 64, spp = 256, ref_spp = 4096, threads = 2, dim_lights = 8;
   float bright = 200, dim = 2;
   std::uint64_t seed = 1;
-  CLI::App app{"Light selection benchmark: uniform against by power, time to equal error"};
+  zraka::cli_app app{"Light selection benchmark: uniform against by power, time to equal error"};
   app.add_option("--width", W, "image width")->capture_default_str();
   app.add_option("--height", H, "image height")->capture_default_str();
   app.add_option("--spp", spp, "uniform choice's samples per pixel: its RMSE there is the target")->capture_default_str();

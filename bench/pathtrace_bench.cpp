@@ -15,7 +15,7 @@
 #include <zraka/path.hpp>
 #include <zraka/progressive.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   std::string variant = "glass", reference, save_reference;
   int W = 64, H = 64, naive_spp = 1024, ref_spp = 4096, threads = 2, depth = 8;
   std::uint64_t seed = 1;
-  CLI::App app{"Path tracer benchmark: throughput, and time to reach naive's error (book 4.2)"};
+  zraka::cli_app app{"Path tracer benchmark: throughput, and time to reach naive's error (book 4.2)"};
   app.add_option("--variant", variant, "Cornell box: boxes, glass or spheres");
   app.add_option("--width", W, "image width");
   app.add_option("--height", H, "image height");

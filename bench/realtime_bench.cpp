@@ -7,12 +7,11 @@
 // two cores as the CPU path tracer, so this compares code, not hardware.
 #include <zraka/error.hpp>
 #include <zraka/gpu_scene.hpp>
+#include <zraka/program_options.hpp>
 #include <zraka/realtime.hpp>
 #include <zraka/render.hpp>
-#include <zraka/scene_file.hpp>
+#include <zraka/scene_argument.hpp>
 #include <zraka/stopwatch.hpp>
-
-#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <ctime>
@@ -70,26 +69,25 @@ rate cpu_rate(const scene& sc, int width, int height, int spp, const path_option
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_name = "spheres";
+  program_options opt{"Benchmark: the real-time kernel (specialised and all-features) vs the CPU path tracer",
+                      take::scene | take::size | take::depth};
+  opt.scene = "spheres", opt.width = 256, opt.height = 256, opt.depth = 8, opt.min_depth = 0;
+  opt.scene_names = named_scene_list();
   std::string method = "mis";
-  int width = 256, height = 256, launches = 16, cpu_spp = 4, depth = 8, rounds = 2;
-  CLI::App app{"Benchmark: the real-time kernel (specialised and all-features) vs the CPU path tracer"};
-  app.add_option("--scene", scene_name, "spheres, cornell, cornell-boxes, cornell-spheres, or a .yaml file");
-  app.add_option("--integrator", method, "naive, nee or mis, on both sides");
-  app.add_option("--width", width, "image width");
-  app.add_option("--height", height, "image height");
-  app.add_option("--launches", launches, "timed kernel launches (1 spp each) per measurement");
-  app.add_option("--cpu-spp", cpu_spp, "samples per pixel for each CPU measurement");
-  app.add_option("--depth", depth, "maximum bounces");
-  app.add_option("--rounds", rounds, "repeat every measurement this often and keep the best "
-                                     "(the machine is shared: the best is the least disturbed)");
-  CLI11_PARSE(app, argc, argv);
+  int launches = 16, cpu_spp = 4, rounds = 2;
+  opt.app.add_option("--integrator", method, "naive, nee or mis, on both sides");
+  opt.app.add_option("--launches", launches, "timed kernel launches (1 spp each) per measurement");
+  opt.app.add_option("--cpu-spp", cpu_spp, "samples per pixel for each CPU measurement");
+  opt.app.add_option("--rounds", rounds, "repeat every measurement this often and keep the best "
+                                         "(the machine is shared: the best is the least disturbed)");
+  if (const auto done = opt.parse(argc, argv)) return *done;
+  const int width = opt.width, height = opt.height, depth = opt.depth;
 
   return guarded([&] {
-    if (width < 1 || height < 1 || launches < 1 || cpu_spp < 1 || rounds < 1 || depth < 0)
-      throw error("sizes, --launches, --cpu-spp and --rounds must be positive, --depth not negative");
+    if (launches < 1 || cpu_spp < 1 || rounds < 1)
+      throw error("--launches, --cpu-spp and --rounds must be positive");
     const stopwatch clock;
-    const scene sc = scene_name.ends_with(".yaml") ? load_scene_file(scene_name).sc : realtime_scene(scene_name);
+    const scene sc = load_scene_argument(opt.scene).sc;
     path_options po;
     po.method = parse_integrator(method);
     po.max_depth = depth;
@@ -99,7 +97,7 @@ int main(int argc, char** argv) {
     gpu_renderer all(ctx, packed, width, height, 1, true);
     std::printf("device: %s, %u compute units\n", ctx.device.device_name.c_str(), ctx.device.compute_units);
     std::printf("scene %s, %dx%d, depth %d, integrator %s; kernel: %d launches of 1 spp; CPU: %d spp\n",
-                scene_name.c_str(), width, height, depth, name(po.method), launches, cpu_spp);
+                opt.scene.c_str(), width, height, depth, name(po.method), launches, cpu_spp);
     std::printf("specialised options:  %s\nall-features options: %s\n", special.options().c_str(),
                 all.options().c_str());
 

@@ -3,7 +3,7 @@
 # by hand, so a new chapter folder is built, and smoke-tested, as soon as it exists.
 #
 # Optional files in a chapter folder:
-#   link.txt   one CMake target per line that the chapter links besides zraka (e.g. CLI11::CLI11)
+#   link.txt   one CMake target per line that the chapter links besides zraka (e.g. zraka::compiled)
 #   needs.txt  one package per line (OpenCL, glfw, epoxy, yaml-cpp, tinyobjloader, fmt) to find first;
 #              if one is missing the chapter is skipped with a message
 #   smoke.txt  the smoke test: see tools/smoke.py
@@ -37,7 +37,7 @@ function(zraka_add_chapters dir)
     endif()
     file(GLOB sources CONFIGURE_DEPENDS ${dir}/${child}/*.cpp)
     add_executable(${name} ${sources})
-    target_link_libraries(${name} PRIVATE zraka::zraka zraka_warnings CLI11::CLI11 ${extra_libs})
+    target_link_libraries(${name} PRIVATE zraka::zraka zraka_warnings zraka::compiled ${extra_libs})
     zraka_use_pch(programs ${name})
     set_property(GLOBAL APPEND PROPERTY ZRAKA_CHAPTERS ${name})
     if(EXISTS ${dir}/${child}/smoke.txt AND ZRAKA_BUILD_TESTS)

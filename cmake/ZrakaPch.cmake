@@ -2,10 +2,10 @@
 # once and reused by every target of its kind (target_precompile_headers REUSE_FROM):
 #   zraka_pch_programs  cmake/pch/programs.hpp  chapters, benchmarks, assignments' render programs
 #   zraka_pch_tests     cmake/pch/tests.hpp     unit tests, assignments' tests
-# CLI11 is only in the programs' one: including it emits code in every translation unit (see
-# programs.hpp), which the tests do not need.
+# CLI11 is in neither: it is compiled once into zraka::compiled (include/zraka/cli.hpp), and the
+# programs' PCH is made with that library's -DZRAKA_COMPILED, like its users.
 #
-# What is in them: standard, GLM, CLI11, yaml-cpp, tinyobjloader and doctest headers; no zraka
+# What is in them: standard, GLM, yaml-cpp, tinyobjloader and doctest headers; no zraka
 # header. Measured, and decided against zraka's: with the zraka headers of 2.2-whitted added to
 # the PCH, its front end (-fsyntax-only) went from 3.2 to 1.7 CPU-s, out of ~20 CPU-s for the
 # whole compile, which is code generation at -O3 that no PCH saves; the PCH grew from 150 to
@@ -36,6 +36,9 @@ if(ZRAKA_PCH)
     add_library(zraka_pch_${kind} OBJECT ${host_src})
     # The same usage requirements as its users, so that the flags match.
     target_link_libraries(zraka_pch_${kind} PRIVATE zraka::zraka zraka_warnings)
+    if(kind STREQUAL "programs")
+      target_link_libraries(zraka_pch_${kind} PRIVATE zraka::compiled)  # its -DZRAKA_COMPILED
+    endif()
     target_precompile_headers(zraka_pch_${kind} PRIVATE ${CMAKE_CURRENT_LIST_DIR}/pch/${kind}.hpp)
   endforeach()
 endif()
@@ -51,7 +54,7 @@ function(zraka_use_pch kind)
 endfunction()
 
 # zraka_use_pch_in_directory(<dir>): every executable defined in <dir> gets a PCH by what it
-# links: zraka_test_main -> tests, otherwise programs. For folders whose CMakeLists.txt only
+# links: zraka_test_main (zraka::test_main) -> tests, otherwise programs. For folders whose CMakeLists.txt only
 # lists programs and tests (book/assignments/), so that it needs no PCH lines of its own.
 function(zraka_use_pch_in_directory dir)
   get_property(targets DIRECTORY ${dir} PROPERTY BUILDSYSTEM_TARGETS)
@@ -61,7 +64,7 @@ function(zraka_use_pch_in_directory dir)
       continue()
     endif()
     get_target_property(libs ${target} LINK_LIBRARIES)
-    if("zraka_test_main" IN_LIST libs)
+    if("zraka_test_main" IN_LIST libs OR "zraka::test_main" IN_LIST libs)
       zraka_use_pch(tests ${target})
     else()
       zraka_use_pch(programs ${target})

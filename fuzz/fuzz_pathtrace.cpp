@@ -29,8 +29,6 @@
 #include <zraka/scene_argument.hpp>
 #include <zraka/scene_file.hpp>
 
-#include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -13,4 +13,9 @@ cmake --build "$tmp/build" >/dev/null
 out=$(env -u ZRAKA_ROOT "$tmp/build/consumer")
 echo "$out"
 case "$out" in *"resource root $tmp/prefix/share/zraka"*) ;; *) echo "wrong resource root"; exit 1;; esac
+out=$(cd "$tmp" && env -u ZRAKA_ROOT "$tmp/build/consumer_compiled" --out c.png --width 5)
+echo "$out"
+case "$out" in *"wrote c.png; resource root $tmp/prefix/share/zraka"*) ;; *) echo "zraka::compiled: wrong output"; exit 1;; esac
+test "$(head -c 8 "$tmp/c.png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" || { echo "c.png is not a PNG"; exit 1; }
+(cd "$tmp" && "$tmp/build/consumer_compiled" --width x 2>/dev/null) && { echo "a bad value did not fail"; exit 1; }
 echo "install check passed"

@@ -245,3 +245,33 @@ TEST_CASE("testing: a reference PNG is a regular file, and its claimed size is c
   CHECK_THROWS_WITH_AS(zt::read_png_display("/dev/zero"), "/dev/zero: is a character device; only regular files are read",
                        error);
 }
+
+TEST_CASE("testing: noise_floor measures the seed-to-seed difference and passes a correct render") {
+  // A "render" of pure noise: 0.5 + U(-a, a) per channel, sigma = a / sqrt(3). Two independent
+  // renders differ by sqrt(2) sigma in RMSE.
+  const double a = 0.1;
+  auto render = [&](std::uint64_t seed, double shift = 0) {
+    zraka::image img(64, 64);
+    zraka::rng g(seed);
+    for (auto& p : img.pixels)
+      for (int c = 0; c < 3; ++c) p[c] = float(0.5 + shift + a * (2 * g.uniform() - 1));
+    return img;
+  };
+  const auto floor = zt::noise_floor([&](std::uint64_t s) { return render(s); }, 4, 2.0);
+  INFO(floor.message);
+  const double expected = std::sqrt(2.0) * a / std::sqrt(3.0);
+  CHECK(floor.seeds == 4);
+  CHECK(std::abs(floor.floor.rmse - expected) < 0.03 * expected);  // 12,288 values: ~1% spread
+  CHECK(floor.tolerance.rmse == doctest::Approx(2 * floor.floor.rmse));
+  CHECK(floor.tolerance.channel_mean == doctest::Approx(2 * floor.floor.channel_mean));
+  CHECK(floor.floor.max_abs <= 2 * a);
+  CHECK(zt::images_match(render(99), render(1), floor.tolerance).ok);  // a new seed passes
+  // A bias of ten times the channel-mean floor fails.
+  CHECK_FALSE(zt::images_match(render(99, 10 * floor.floor.channel_mean + 0.01), render(1), floor.tolerance).ok);
+  // A noiseless render: a zero floor, which only the same image meets.
+  const auto exact = zt::noise_floor([&](std::uint64_t) { return render(5); }, 2);
+  CHECK(exact.floor.rmse == 0);
+  CHECK(zt::images_match(render(5), render(5), exact.tolerance).ok);
+  CHECK_THROWS_AS(zt::noise_floor([&](std::uint64_t s) { return render(s); }, 1), zraka::error);
+  CHECK_THROWS_AS(zt::noise_floor([&](std::uint64_t s) { return render(s); }, 4, 0.5), zraka::error);
+}

@@ -75,7 +75,7 @@ std::string find_page(const fs::path& book, const chapter& c) {
 
 int main(int argc, char** argv) {
   std::string root;
-  CLI::App app{"Chapter 0.0: the course at a glance, and every chapter with its program and page"};
+  zraka::cli_app app{"Chapter 0.0: the course at a glance, and every chapter with its program and page"};
   app.add_option("--root", root,
                  "folder holding chapters/ and book/ (default: ZRAKA_ROOT or the source tree)");
   if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;

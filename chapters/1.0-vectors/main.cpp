@@ -49,7 +49,7 @@ struct checks {
 int main(int argc, char** argv) {
   std::vector<double> a_in{2, 1, 0}, b_in{1, 3, 0.5}, n_in{0, 0, -1};
   std::uint64_t seed = 1;
-  CLI::App app{"Chapter 1.0: vectors, linear and affine maps (checks the definitions numerically)"};
+  zraka::cli_app app{"Chapter 1.0: vectors, linear and affine maps (checks the definitions numerically)"};
   app.add_option("--a", a_in, "vector a (3 numbers)")->expected(3);
   app.add_option("--b", b_in, "vector b (3 numbers)")->expected(3);
   app.add_option("--normal", n_in, "a normal to build an orthonormal basis around")->expected(3);

@@ -26,7 +26,7 @@ std::string str(const vec3& v) {
 
 int main(int argc, char** argv) {
   std::vector<double> o_in{1, 0, 2}, d_in{2, -1, -2}, ts{0, 0.5, 1, 2, 10, -1};
-  CLI::App app{"Chapter 1.1: rays R(t) = O + tD with a unit direction"};
+  zraka::cli_app app{"Chapter 1.1: rays R(t) = O + tD with a unit direction"};
   app.add_option("--origin", o_in, "ray origin O (3 numbers)")->expected(3);
   app.add_option("--direction", d_in, "ray direction (3 numbers; any length, even 0)")->expected(3);
   app.add_option("--t", ts, "parameters t at which to print R(t)")->expected(1, 64);

@@ -14,6 +14,7 @@
 #include <zraka/error.hpp>
 #include <zraka/image_error.hpp>
 #include <zraka/image_io.hpp>
+#include <zraka/mitsuba_export.hpp>
 #include <zraka/path.hpp>
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/program_options.hpp>
@@ -23,89 +24,8 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
-#include <sstream>
 
 using namespace zraka;
-
-namespace {
-
-// The scene as JSON for tools/mitsuba_reference.py: spheres, quads, materials, camera, size.
-std::string scene_json(const scene& sc, int width, int height, int depth) {
-  std::ostringstream o;
-  o.precision(17);
-  auto v3 = [&](const auto& v) { o << '[' << double(v.x) << ", " << double(v.y) << ", " << double(v.z) << ']'; };
-  o << "{\n  \"width\": " << width << ", \"height\": " << height << ", \"max_depth\": " << depth
-    << ",\n  \"background\": ";
-  v3(sc.background);
-  o << ",\n  \"camera\": {\"position\": ";
-  v3(sc.camera.position);
-  o << ", \"look_at\": ";
-  v3(sc.camera.look_at);
-  o << ", \"up\": ";
-  v3(sc.camera.up);
-  o << ", \"vfov\": " << sc.camera.vfov_degrees << "},\n  \"materials\": [";
-  for (std::size_t i = 0; i < sc.materials.size(); ++i) {
-    const material& m = sc.materials[i];
-    o << (i ? ",\n    " : "\n    ") << "{\"type\": \"" << kind_name(m.kind) << "\", \"albedo\": ";
-    v3(m.albedo.a);
-    o << ", \"checker\": " << (m.albedo.type == texture::kind::checker ? "true" : "false")
-      << ", \"fuzz\": " << m.fuzz << ", \"ior\": " << m.ior << ", \"radiance\": ";
-    v3(m.radiance);
-    o << ", \"two_sided\": " << (m.two_sided ? "true" : "false") << ", \"interior\": " << m.interior << "}";
-  }
-  o << "],\n  \"global_medium\": " << sc.global_medium << ",\n  \"media\": [";  // book 6.1
-  for (std::size_t i = 0; i < sc.media.size(); ++i) {
-    const medium& md = sc.media[i];
-    o << (i ? ",\n    " : "\n    ") << "{\"name\": \"" << md.name << "\", \"sigma_a\": ";
-    v3(md.sigma_a);
-    o << ", \"sigma_s\": ";
-    v3(md.sigma_s);
-    o << ", \"g\": " << md.g << "}";
-  }
-  o << "],\n  \"spheres\": [";
-  for (std::size_t i = 0; i < sc.spheres.size(); ++i) {
-    o << (i ? ",\n    " : "\n    ") << "{\"center\": ";
-    v3(sc.spheres[i].shape.center);
-    o << ", \"radius\": " << sc.spheres[i].shape.radius << ", \"material\": " << sc.spheres[i].material << "}";
-  }
-  o << "],\n  \"quads\": [";
-  for (std::size_t i = 0; i < sc.quads.size(); ++i) {
-    const auto& q = sc.quads[i].shape;
-    o << (i ? ",\n    " : "\n    ") << "{\"corner\": ";
-    v3(q.corner);
-    o << ", \"u\": ";
-    v3(q.u);
-    o << ", \"v\": ";
-    v3(q.v);
-    o << ", \"material\": " << sc.quads[i].material << "}";
-  }
-  o << "],\n  \"triangles\": [";  // loose triangles and every mesh's triangles, flat-shaded
-  bool first = true;
-  auto tri = [&](const auto& a, const auto& b, const auto& c, int mat) {
-    o << (first ? "\n    " : ",\n    ") << "{\"a\": ";
-    v3(a), o << ", \"b\": ", v3(b), o << ", \"c\": ", v3(c);
-    o << ", \"material\": " << mat << "}";
-    first = false;
-  };
-  for (const auto& t : sc.triangles) tri(t.shape.a, t.shape.b, t.shape.c, t.material);
-  for (const auto& m : sc.meshes)
-    for (std::size_t i = 0; i < m.shape.triangle_count(); ++i) {
-      const auto t = m.shape.triangle(i);
-      tri(t.a, t.b, t.c, m.material);
-    }
-  o << "],\n  \"point_lights\": [";
-  for (std::size_t i = 0; i < sc.point_lights.size(); ++i) {
-    o << (i ? ",\n    " : "\n    ") << "{\"position\": ";
-    v3(sc.point_lights[i].position);
-    o << ", \"intensity\": ";
-    v3(sc.point_lights[i].intensity);
-    o << "}";
-  }
-  o << "]\n}\n";
-  return o.str();
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   program_options opt{"Chapter 2.3: path tracing with the naive, nee or mis integrator, error against run time",
@@ -117,7 +37,7 @@ int main(int argc, char** argv) {
   int rr_depth = 3;
   double budget = 0;
   bool centre = false;
-  CLI::App& app = opt.app;
+  zraka::cli_app& app = opt.app;
   app.add_option("--integrator", method, "naive, nee or mis");
   app.add_option("--rr-depth", rr_depth, "Russian roulette from this many bounces on");
   app.add_option("--lights", selection, "how next-event estimation chooses a light: power or uniform");
@@ -146,17 +66,8 @@ int main(int argc, char** argv) {
       throw error("--lights must be power or uniform, got '" + selection + "'");
     io.lights = selection == "power" ? light_selection::power : light_selection::uniform;
     if (!report.empty() && reference.empty()) throw error("--report needs --reference");
-    if (!json.empty()) {
-      if (!sc.planes.empty()) throw error("--export: Mitsuba has no infinite plane; use a large quad");
-      for (const medium& md : sc.media)
-        if (!md.homogeneous()) throw error("--export: medium '" + md.name + "' is a density grid; only homogeneous media are exported");
-      if (!sc.user_shapes.empty()) throw error("--export: a user shape ('" + sc.user_shapes[0].shape->name() + "') cannot be exported");
-      if (sc.environment) throw error("--export: the environment light ('" + sc.environment->name() + "') is not exported to Mitsuba yet");
-      for (const material& m : sc.materials)
-        if (is_custom(m)) throw error("--export: a custom BSDF ('" + m.bsdf->name() + "') cannot be exported");
-        else if (is_microfacet(m))
-          throw error(std::string("--export: a ") + kind_name(m.kind) + " cannot be exported yet (tools/mitsuba_reference.py has no rough materials)");
-      write_file_atomically(json, scene_json(sc, W, H, io.max_depth));
+    if (!json.empty()) {  // for the Mitsuba reference (mitsuba_export.hpp), then stop
+      write_file_atomically(json, mitsuba_scene_json(sc, W, H, io.max_depth));
       std::printf("wrote %s (%zu spheres, %zu quads, %zu materials)\n", json.c_str(), sc.spheres.size(),
                   sc.quads.size(), sc.materials.size());
       return 0;

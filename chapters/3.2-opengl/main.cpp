@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   std::string screenshot, vertex_file = "kernels/triangle.vert",
                           fragment_file = "kernels/triangle.frag";
   bool thesis_stride = false, points = false;
-  CLI::App app{"Chapter 3.2: a coloured triangle with OpenGL 3.3 core"};
+  zraka::cli_app app{"Chapter 3.2: a coloured triangle with OpenGL 3.3 core"};
   app.add_option("--width", width, "window width in pixels");
   app.add_option("--height", height, "window height in pixels");
   app.add_option("--frames", frames, "draw this many frames, then stop (0: until the window closes)");

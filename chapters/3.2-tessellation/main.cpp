@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
   double angle = 30;
   bool wireframe = false;
   std::string screenshot, patch_file = "scenes/teapot.bpt";
-  CLI::App app{"Chapter 3.2: the teapot's Bezier patches tessellated on the GPU (OpenGL 4.1)"};
+  zraka::cli_app app{"Chapter 3.2: the teapot's Bezier patches tessellated on the GPU (OpenGL 4.1)"};
   app.add_option("--width", width, "window width in pixels");
   app.add_option("--height", height, "window height in pixels");
   app.add_option("--frames", frames, "draw this many frames, then stop (0: until the window closes)");

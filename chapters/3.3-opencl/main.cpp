@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   int device_index = 0;
   long long n_arg = 1 << 20;
   std::string kernel_file = "kernels/vector_add.cl";
-  CLI::App app{"Chapter 3.3: vector addition with OpenCL, checked against the CPU"};
+  zraka::cli_app app{"Chapter 3.3: vector addition with OpenCL, checked against the CPU"};
   app.add_flag("--list", list, "list the OpenCL platforms and devices, then exit");
   app.add_option("--device", device_index, "device number from --list");
   app.add_option("-n,--n", n_arg, "number of elements");

@@ -19,7 +19,7 @@
 #include <zraka/path.hpp>
 #include <zraka/progressive.hpp>
 
-#include <CLI/CLI.hpp>
+#include <zraka/cli.hpp>
 
 #include <cmath>
 #include <cstdio>

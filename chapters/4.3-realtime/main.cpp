@@ -16,12 +16,11 @@
 #include <zraka/gl.hpp>
 #include <zraka/gpu_scene.hpp>
 #include <zraka/image_io.hpp>
+#include <zraka/program_options.hpp>
 #include <zraka/realtime.hpp>
-#include <zraka/scene_file.hpp>
+#include <zraka/scene_argument.hpp>
 #include <zraka/scene_query.hpp>
 #include <zraka/stopwatch.hpp>
-
-#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -130,65 +129,75 @@ void install_callbacks(GLFWwindow* w, viewer_input& in) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_name = "spheres", out, screenshot, kernel_file = "kernels/pathtrace.cl", method = "mis";
-  std::optional<int> width_opt, height_opt, frames_opt, spp_opt, depth_opt;
-  std::optional<std::uint64_t> seed_opt;
+  zraka::program_options opt{"Chapter 4.3: real-time path tracing with OpenCL, shown with OpenGL",
+                             zraka::take::scene | zraka::take::size | zraka::take::spp | zraka::take::depth |
+                                 zraka::take::seed | zraka::take::out};
+  opt.scene = "spheres", opt.out = "realtime.png";
+  opt.scene_names = zraka::named_scene_list();
+  opt.scene_settings = true;  // a scene file's width, height, spp, max_depth and seed (else below)
+  opt.min_depth = 0;
+  std::string screenshot, kernel_file = "kernels/pathtrace.cl", method = "mis";
+  std::optional<int> frames_opt;
   int spf = 1, device_index = 0, rr_depth = 3;
   bool headless = false, weak_seed = false, all_features = false;
-  CLI::App app{"Chapter 4.3: real-time path tracing with OpenCL, shown with OpenGL"};
-  app.add_option("--scene", scene_name, "spheres, cornell (glass), cornell-boxes, cornell-spheres, "
-                                        "or a .yaml scene file");
-  app.add_option("--width", width_opt, "image width in pixels (default: a scene file's, else 512)");
-  app.add_option("--height", height_opt, "image height in pixels (default: a scene file's, else 512)");
-  app.add_option("--frames", frames_opt, "frames to render, then stop (window mode: 0 = until closed)");
-  app.add_option("--spp", spp_opt, "headless: samples per pixel in all (default: a scene file's, else 8 "
-                                   "frames' worth)");
+  zraka::cli_app& app = opt.app;
+  app.add_option("--frames", frames_opt, "frames to render, then stop (window mode: 0 = until closed)")
+      ->default_str("window: 0; headless: --spp's worth");
   app.add_option("--spp-per-frame", spf, "samples per pixel added by each frame");
-  app.add_option("--depth", depth_opt, "maximum bounces (default: a scene file's max_depth, else 8)");
   app.add_option("--rr-depth", rr_depth, "Russian roulette from this many bounces on");
-  app.add_option("--integrator", method, "naive, nee or mis (path.hpp's methods; default mis)");
-  app.add_option("--seed", seed_opt, "random seed (default: a scene file's, else 1)");
+  app.add_option("--integrator", method, "naive, nee or mis (path.hpp's methods)");
   app.add_option("--device", device_index, "OpenCL device number (chapter 3.3's --list)");
-  app.add_flag("--headless", headless, "no window: render --frames frames and write --out");
-  app.add_option("--out", out, "headless: the image to write (.png, .ppm or .pfm)");
-  app.add_option("--screenshot", screenshot, "window mode: save the window after --frames frames");
+  app.add_flag("--headless", headless, "no window: render --frames frames (or --spp) and write --out");
+  app.add_option("--screenshot", screenshot, "window mode: save the window after --frames frames (.png, .ppm, .pfm; "
+                                              "a bare name run inside the checkout goes to build/out/)");
   app.add_flag("--weak-seed", weak_seed, "seed each pixel with its raw coordinates, as the thesis's "
                                          "tutorial did (errata C7), to see the pattern noise");
   app.add_flag("--all-features", all_features, "compile every code path, not just the scene's");
   app.add_option("--kernel", kernel_file, "the kernel file, built after kernels/rng.cl (resource "
                                           "root or working directory)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto done = opt.parse(argc, argv)) return *done;
 
   return zraka::guarded([&] {
     const stopwatch clock;
-    // A scene file brings its own settings; the built-in scenes use the program's defaults.
-    const bool from_file = scene_name.ends_with(".yaml");
-    scene sc = from_file ? load_scene_file(scene_name).sc : realtime_scene(scene_name);
-    const int width = width_opt.value_or(from_file ? sc.settings.width : 512);
-    const int height = height_opt.value_or(from_file ? sc.settings.height : 512);
-    const int depth = depth_opt.value_or(from_file ? sc.settings.max_depth : 8);
-    const std::uint64_t seed = seed_opt.value_or(from_file ? sc.settings.seed : 1);
+    // A scene file brings its own settings; the built-in scenes use this program's: 512x512,
+    // depth 8, seed 1, and headless 8 frames' worth of samples.
+    if (spf < 1 || spf > 4096) throw error("--spp-per-frame must be in 1..4096, got " + std::to_string(spf));
+    loaded_scene loaded = load_scene_argument(opt.scene);
+    scene& sc = loaded.sc;
+    const named_scene* built_in = is_scene_path(opt.scene) ? nullptr : find_named_scene(opt.scene);
+    if (built_in && built_in->build) {
+      sc.settings.width = sc.settings.height = 512;
+      sc.settings.max_depth = 8, sc.settings.seed = 1, sc.settings.spp = 8 * spf;
+    }
+    opt.apply_to(sc.settings);  // the command line over the scene's settings, checked
+    const int width = opt.width, height = opt.height, depth = opt.depth;
+    const std::uint64_t seed = opt.seed;
+    const std::string& out = opt.out;
     int frames = frames_opt.value_or(0);
-    if (width < 1 || height < 1 || width > 4096 || height > 4096)
+    if (width > 4096 || height > 4096)
       throw error("image size " + std::to_string(width) + "x" + std::to_string(height) +
                   " is out of range (1..4096)");
     if (frames < 0) throw error("--frames must not be negative, got " + std::to_string(frames));
-    if (spf < 1 || spf > 4096) throw error("--spp-per-frame must be in 1..4096, got " + std::to_string(spf));
-    if (depth < 0 || depth > 64) throw error("--depth must be in 0..64, got " + std::to_string(depth));
     if (rr_depth < 0) throw error("--rr-depth must not be negative, got " + std::to_string(rr_depth));
-    if (frames_opt && spp_opt) throw error("give --frames or --spp, not both");
-    if (!headless && spp_opt) throw error("--spp is for --headless; in window mode use --frames");
+    if (frames_opt && opt.given("--spp")) throw error("give --frames or --spp, not both");
+    if (!headless && opt.given("--spp")) throw error("--spp is for --headless; in window mode use --frames");
     if (headless && !screenshot.empty()) throw error("--screenshot is for window mode; use --out with --headless");
-    if (!headless && !out.empty()) throw error("--out is for --headless; in window mode use --screenshot");
+    if (!headless && opt.given("--out")) throw error("--out is for --headless; in window mode use --screenshot");
     if (!screenshot.empty() && frames == 0) throw error("--screenshot needs --frames N");
+    if (!screenshot.empty()) {  // the same convention as --out
+      check_output_name(screenshot);
+      const std::string ext = std::filesystem::path(screenshot).extension().string();
+      if (ext != ".png" && ext != ".ppm" && ext != ".pfm")
+        throw error("--screenshot " + screenshot + ": unknown image type '" + ext + "' (use .png, .ppm, .pfm)");
+      screenshot = output_file(screenshot).string();
+    }
+    if (headless && frames_opt && frames == 0) throw error("--frames must be positive with --headless");
     // Headless: the samples per pixel in all, in frames of spf (the last one may be smaller).
     int total_spp = frames * spf;
     if (headless && !frames_opt) {
-      total_spp = spp_opt.value_or(from_file ? sc.settings.spp : 8 * spf);
-      if (total_spp < 1) throw error("--spp must be positive, got " + std::to_string(total_spp));
+      total_spp = opt.spp;
       frames = (total_spp + spf - 1) / spf;
     }
-    if (headless && frames == 0) throw error("--frames must be positive with --headless");
     path_options po;
     po.method = parse_integrator(method);
     po.max_depth = depth;
@@ -222,7 +231,7 @@ int main(int argc, char** argv) {
     std::printf("device: %s (%s, %s, %u compute units)\n", ctx->device.device_name.c_str(),
                 ctx->device.platform_name.c_str(), ctx->device.c_version.c_str(),
                 ctx->device.compute_units);
-    std::printf("scene %s: %s\n", scene_name.c_str(), describe_built(sc).c_str());
+    std::printf("scene %s: %s\n", opt.scene.c_str(), describe_built(sc).c_str());
     std::printf("%s\n", packed.light_summary.c_str());
     std::printf("kernel options: %s\n", renderer.options().c_str());
     std::printf("kernel build: %.2f s (PoCL caches binaries; POCL_KERNEL_CACHE=0 while editing kernels)\n",
@@ -238,13 +247,13 @@ int main(int argc, char** argv) {
       const image img = renderer.read_image();  // waits for the queue
       const double secs = run.seconds();
       // [end]
-      write_image(img, out.empty() ? "realtime.png" : out);
+      write_image(img, out);
       const rgb m = mean_colour(img);
       const double paths = double(width) * height * total_spp;
       std::printf("frames: %d, %u spp, %.1f ms per frame, %.2f M paths/s\n", frames,
                   renderer.samples(), 1e3 * secs / frames, paths / secs * 1e-6);
       std::printf("mean colour: %.4f %.4f %.4f\n", double(m.x), double(m.y), double(m.z));
-      std::printf("wrote %s\n", out.empty() ? "realtime.png" : out.c_str());
+      std::printf("wrote %s\n", out.c_str());
       std::printf("summary: %d frames of %dx%d at %d spp each (%d spp, %s) on %s in %.2f s (%.1f ms per "
                   "frame); %.2f s in total\n", frames, width, height, spf, total_spp, name(po.method),
                   ctx->device.device_name.c_str(), secs, 1e3 * secs / frames, clock.seconds());
@@ -321,7 +330,7 @@ int main(int argc, char** argv) {
       }
       if (!screenshot.empty() && frame == frames) {  // before the swap: the back buffer
         const image shot = gl::to_image(gl::read_pixels(fw, fh));
-        write_png(shot, screenshot);
+        write_image(shot, screenshot);
         const rgb m = mean_colour(shot);
         std::printf("screenshot %s: mean colour %.4f %.4f %.4f\n", screenshot.c_str(), double(m.x),
                     double(m.y), double(m.z));

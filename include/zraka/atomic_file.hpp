@@ -10,6 +10,7 @@
 //
 // A name that cannot be what the user meant is refused: an empty name, a folder, or a name that
 // is only an extension (".png", what `--out ""` becomes once a program appends ".png").
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 
 #include <atomic>
@@ -119,7 +120,13 @@ inline void remove_stale_temporaries(const std::filesystem::path& dir, const std
 }  // namespace detail
 
 // Throws zraka::error for a name that cannot be an output file (see the top of this file).
-inline void check_output_name(const std::filesystem::path& path) {
+ZRAKA_COMPILED_FN void check_output_name(const std::filesystem::path& path);
+// Writes `bytes` to `path` through a temporary beside it (see the top of this file).
+ZRAKA_COMPILED_FN void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
+
+// Compiled into zraka::compiled (compiled.hpp) unless header-only.
+#if ZRAKA_COMPILED_DEFINITIONS
+ZRAKA_COMPILED_FN void check_output_name(const std::filesystem::path& path) {
   const std::string name = path.filename().string();
   if (path.empty()) throw error("the output file name is empty");
   if (name.empty() || name == "." || name == "..")
@@ -131,7 +138,7 @@ inline void check_output_name(const std::filesystem::path& path) {
     throw error("cannot write '" + path.string() + "': it is a folder");
 }
 
-inline void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
+ZRAKA_COMPILED_FN void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
   check_output_name(path);
   const auto dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   if (!std::filesystem::is_directory(dir))
@@ -154,5 +161,7 @@ inline void write_file_atomically(const std::filesystem::path& path, std::string
   std::filesystem::rename(tmp, path, ec);
   if (ec) throw error("cannot write " + path.string() + ": " + ec.message());
 }
+
+#endif  // ZRAKA_COMPILED_DEFINITIONS
 
 }  // namespace zraka

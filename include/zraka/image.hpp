@@ -1,6 +1,7 @@
 #pragma once
 // A linear-light RGB image of floats. Conventions: pixel (0,0) is the top-left corner, x runs
 // right, y runs down; values are linear radiance (no gamma) until a writer encodes them.
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/limits.hpp>
 #include <zraka/vec.hpp>
@@ -36,15 +37,21 @@ struct image {
     return n;
   }
 
-  static void check_size(long long w, long long h) {
-    if (w < 1 || h < 1 || w > max_side || h > max_side ||
-        static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > max_pixels)
-      throw error("image size " + std::to_string(w) + "x" + std::to_string(h) +
-                  " is out of range (each side 1.." + std::to_string(max_side) + ")");
-    // Below the hard maximum, the raisable one (limits.hpp) keeps a run within the memory.
-    check_limit(std::uint64_t(w) * std::uint64_t(h), limits().pixels, "pixels",
-                "the image size " + std::to_string(w) + "x" + std::to_string(h) + " in pixels");
-  }
+  // Throws zraka::error unless w x h is a legal image size (each side 1..max_side, the limits).
+  ZRAKA_COMPILED_FN static void check_size(long long w, long long h);
 };
+
+// Compiled into zraka::compiled (compiled.hpp) unless header-only.
+#if ZRAKA_COMPILED_DEFINITIONS
+ZRAKA_COMPILED_FN void image::check_size(long long w, long long h) {
+  if (w < 1 || h < 1 || w > max_side || h > max_side ||
+      static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > max_pixels)
+    throw error("image size " + std::to_string(w) + "x" + std::to_string(h) +
+                " is out of range (each side 1.." + std::to_string(max_side) + ")");
+  // Below the hard maximum, the raisable one (limits.hpp) keeps a run within the memory.
+  check_limit(std::uint64_t(w) * std::uint64_t(h), limits().pixels, "pixels",
+              "the image size " + std::to_string(w) + "x" + std::to_string(h) + " in pixels");
+}
+#endif
 
 }  // namespace zraka

@@ -6,6 +6,7 @@
 // counted, written as magenta in PNG/PPM, reported on stderr and returned; PFM and EXR refuse
 // them, since a reference image with NaN would poison every comparison.
 #include <zraka/atomic_file.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/image.hpp>
 #include <zraka/input_file.hpp>
 
@@ -25,10 +26,18 @@
 #include <string_view>
 #include <vector>
 
+// The writers and the PFM reader are compiled into zraka::compiled (compiled.hpp): with
+// stb_image_write's implementation they cost every unit that writes an image ~1.5 CPU-s at -O3.
+// stb is static, in the library's unit or (header-only) in the program's: it never clashes with
+// an stb of the program's own.
+#if ZRAKA_COMPILED_DEFINITIONS
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
-#include <tinyexr.h>
+#endif
+#include <tinyexr.h>  // declarations; the library is libtinyexr
+
+static_assert(std::endian::native == std::endian::little, "PFM I/O assumes a little-endian host");
 
 namespace zraka {
 
@@ -65,103 +74,20 @@ inline void report_nonfinite(std::size_t bad, const std::filesystem::path& path)
 }
 }  // namespace detail
 
-// Returns the number of NaN/inf pixels (written as magenta).
-inline std::size_t write_png(const image& img, const std::filesystem::path& path) {
-  std::string rgb8;
-  const std::size_t bad = detail::encode_8bit(img, rgb8);
-  std::string png;
-  auto sink = [](void* ctx, void* data, int size) {
-    static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), std::size_t(size));
-  };
-  if (!stbi_write_png_to_func(sink, &png, img.width, img.height, 3, rgb8.data(), img.width * 3))
-    throw error("cannot encode PNG " + path.string());
-  write_file_atomically(path, png);
-  detail::report_nonfinite(bad, path);
-  return bad;
-}
-
+// Each returns the number of NaN/inf pixels (written as magenta).
+ZRAKA_COMPILED_FN std::size_t write_png(const image& img, const std::filesystem::path& path);
 // PPM P3: plain text, one pixel per line, as the thesis's CPU programs wrote.
-inline std::size_t write_ppm(const image& img, const std::filesystem::path& path) {
-  std::string rgb8;
-  const std::size_t bad = detail::encode_8bit(img, rgb8);
-  std::ostringstream out;
-  out << "P3\n" << img.width << ' ' << img.height << "\n255\n";
-  for (std::size_t i = 0; i < img.pixels.size(); ++i)
-    out << int(std::uint8_t(rgb8[3 * i])) << ' ' << int(std::uint8_t(rgb8[3 * i + 1])) << ' '
-        << int(std::uint8_t(rgb8[3 * i + 2])) << '\n';
-  write_file_atomically(path, out.str());
-  detail::report_nonfinite(bad, path);
-  return bad;
-}
-
-// PFM: little-endian floats, rows stored bottom to top (the format's rule).
-static_assert(std::endian::native == std::endian::little, "PFM I/O assumes a little-endian host");
-inline void write_pfm(const image& img, const std::filesystem::path& path) {
-  if (const std::size_t bad = img.count_nonfinite())
-    throw error("refusing to write " + path.string() + ": " + std::to_string(bad) +
-                " NaN/inf pixel(s)");
-  std::string out = "PF\n" + std::to_string(img.width) + ' ' + std::to_string(img.height) +
-                    "\n-1.0\n";
-  const std::size_t header = out.size();
-  const std::size_t row = std::size_t(img.width) * 3 * sizeof(float);
-  out.resize(header + row * std::size_t(img.height));
-  for (int y = 0; y < img.height; ++y)
-    std::memcpy(out.data() + header + row * std::size_t(img.height - 1 - y), &img.at(0, y), row);
-  write_file_atomically(path, out);
-}
+ZRAKA_COMPILED_FN std::size_t write_ppm(const image& img, const std::filesystem::path& path);
+// PFM: little-endian floats, rows stored bottom to top (the format's rule); refuses NaN/inf.
+ZRAKA_COMPILED_FN void write_pfm(const image& img, const std::filesystem::path& path);
+// Writes by extension: .png, .ppm or .pfm.
+ZRAKA_COMPILED_FN void write_image(const image& img, const std::filesystem::path& path);
 
 // Strict: the header "PF W H SCALE" with a negative (little-endian) finite scale, exactly W*H
 // pixels after it, every one finite (a reference with NaN would poison every comparison).
 // parse_pfm reads the bytes of a PFM file (`name` for messages); read_pfm a file.
-inline image parse_pfm(std::string_view bytes, const std::string& name) {
-  std::size_t pos = 0;
-  auto field = [&](const char* what) {
-    while (pos < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
-    const std::size_t start = pos;
-    while (pos < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[pos])) && pos - start < 32) ++pos;
-    if (start == pos) throw error(name + ": not a PFM file (the header ends before the " + what + ")");
-    return bytes.substr(start, pos - start);
-  };
-  if (field("magic") != "PF") throw error(name + ": not a little-endian colour PFM file (it does not start with PF)");
-  auto integer = [&](const char* what) {
-    const std::string_view t = field(what);
-    long long x = 0;
-    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-    if (ec != std::errc() || end != t.data() + t.size())
-      throw error(name + ": the " + what + " '" + std::string(t) + "' is not an integer");
-    return x;
-  };
-  const long long w = integer("width"), h = integer("height");
-  const std::string_view st = field("scale");
-  double scale = 0;
-  const auto [end, ec] = std::from_chars(st.data(), st.data() + st.size(), scale);
-  if (ec != std::errc() || end != st.data() + st.size() || !std::isfinite(scale) || scale == 0)
-    throw error(name + ": the scale '" + std::string(st) + "' is not a finite non-zero number");
-  if (scale > 0) throw error(name + ": a big-endian PFM (positive scale); only little-endian is read");
-  try {
-    image::check_size(w, h);
-  } catch (const error& e) {
-    throw error(name + ": " + e.what());
-  }
-  if (pos >= bytes.size() || !std::isspace(static_cast<unsigned char>(bytes[pos])))
-    throw error(name + ": file ends early (truncated PFM)");
-  ++pos;  // the single whitespace after the scale
-  const std::size_t row = std::size_t(w) * 3 * sizeof(float), need = row * std::size_t(h);
-  if (bytes.size() - pos < need) throw error(name + ": file ends early (truncated PFM)");
-  if (bytes.size() - pos > need)
-    throw error(name + ": " + std::to_string(bytes.size() - pos - need) + " bytes after the last pixel");
-  image img(static_cast<int>(w), static_cast<int>(h));
-  for (long long y = h - 1; y >= 0; --y, pos += row)
-    std::memcpy(&img.at(0, int(y)), bytes.data() + pos, row);
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x)
-      if (!is_finite(img.at(x, y)))
-        throw error(name + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is NaN or infinite");
-  return img;
-}
-inline image read_pfm(const std::filesystem::path& path) {
-  return parse_pfm(read_input_file(path), path.string());  // a regular file within limits().file_bytes
-}
+ZRAKA_COMPILED_FN image parse_pfm(std::string_view bytes, const std::string& name);
+ZRAKA_COMPILED_FN image read_pfm(const std::filesystem::path& path);
 
 // [listing exr]
 // OpenEXR: three channels of 32-bit float (B, G, R: the order EXR files list them in), ZIP
@@ -263,8 +189,100 @@ inline image read_float_image(const std::filesystem::path& path) {
   return path.extension() == ".exr" ? read_exr(path) : read_pfm(path);
 }
 
+#if ZRAKA_COMPILED_DEFINITIONS
+ZRAKA_COMPILED_FN std::size_t write_png(const image& img, const std::filesystem::path& path) {
+  std::string rgb8;
+  const std::size_t bad = detail::encode_8bit(img, rgb8);
+  std::string png;
+  auto sink = [](void* ctx, void* data, int size) {
+    static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), std::size_t(size));
+  };
+  if (!stbi_write_png_to_func(sink, &png, img.width, img.height, 3, rgb8.data(), img.width * 3))
+    throw error("cannot encode PNG " + path.string());
+  write_file_atomically(path, png);
+  detail::report_nonfinite(bad, path);
+  return bad;
+}
+
+ZRAKA_COMPILED_FN std::size_t write_ppm(const image& img, const std::filesystem::path& path) {
+  std::string rgb8;
+  const std::size_t bad = detail::encode_8bit(img, rgb8);
+  std::ostringstream out;
+  out << "P3\n" << img.width << ' ' << img.height << "\n255\n";
+  for (std::size_t i = 0; i < img.pixels.size(); ++i)
+    out << int(std::uint8_t(rgb8[3 * i])) << ' ' << int(std::uint8_t(rgb8[3 * i + 1])) << ' '
+        << int(std::uint8_t(rgb8[3 * i + 2])) << '\n';
+  write_file_atomically(path, out.str());
+  detail::report_nonfinite(bad, path);
+  return bad;
+}
+
+ZRAKA_COMPILED_FN void write_pfm(const image& img, const std::filesystem::path& path) {
+  if (const std::size_t bad = img.count_nonfinite())
+    throw error("refusing to write " + path.string() + ": " + std::to_string(bad) +
+                " NaN/inf pixel(s)");
+  std::string out = "PF\n" + std::to_string(img.width) + ' ' + std::to_string(img.height) +
+                    "\n-1.0\n";
+  const std::size_t header = out.size();
+  const std::size_t row = std::size_t(img.width) * 3 * sizeof(float);
+  out.resize(header + row * std::size_t(img.height));
+  for (int y = 0; y < img.height; ++y)
+    std::memcpy(out.data() + header + row * std::size_t(img.height - 1 - y), &img.at(0, y), row);
+  write_file_atomically(path, out);
+}
+
+ZRAKA_COMPILED_FN image parse_pfm(std::string_view bytes, const std::string& name) {
+  std::size_t pos = 0;
+  auto field = [&](const char* what) {
+    while (pos < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
+    const std::size_t start = pos;
+    while (pos < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[pos])) && pos - start < 32) ++pos;
+    if (start == pos) throw error(name + ": not a PFM file (the header ends before the " + what + ")");
+    return bytes.substr(start, pos - start);
+  };
+  if (field("magic") != "PF") throw error(name + ": not a little-endian colour PFM file (it does not start with PF)");
+  auto integer = [&](const char* what) {
+    const std::string_view t = field(what);
+    long long x = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+    if (ec != std::errc() || end != t.data() + t.size())
+      throw error(name + ": the " + what + " '" + std::string(t) + "' is not an integer");
+    return x;
+  };
+  const long long w = integer("width"), h = integer("height");
+  const std::string_view st = field("scale");
+  double scale = 0;
+  const auto [end, ec] = std::from_chars(st.data(), st.data() + st.size(), scale);
+  if (ec != std::errc() || end != st.data() + st.size() || !std::isfinite(scale) || scale == 0)
+    throw error(name + ": the scale '" + std::string(st) + "' is not a finite non-zero number");
+  if (scale > 0) throw error(name + ": a big-endian PFM (positive scale); only little-endian is read");
+  try {
+    image::check_size(w, h);
+  } catch (const error& e) {
+    throw error(name + ": " + e.what());
+  }
+  if (pos >= bytes.size() || !std::isspace(static_cast<unsigned char>(bytes[pos])))
+    throw error(name + ": file ends early (truncated PFM)");
+  ++pos;  // the single whitespace after the scale
+  const std::size_t row = std::size_t(w) * 3 * sizeof(float), need = row * std::size_t(h);
+  if (bytes.size() - pos < need) throw error(name + ": file ends early (truncated PFM)");
+  if (bytes.size() - pos > need)
+    throw error(name + ": " + std::to_string(bytes.size() - pos - need) + " bytes after the last pixel");
+  image img(static_cast<int>(w), static_cast<int>(h));
+  for (long long y = h - 1; y >= 0; --y, pos += row)
+    std::memcpy(&img.at(0, int(y)), bytes.data() + pos, row);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (!is_finite(img.at(x, y)))
+        throw error(name + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is NaN or infinite");
+  return img;
+}
+ZRAKA_COMPILED_FN image read_pfm(const std::filesystem::path& path) {
+  return parse_pfm(read_input_file(path), path.string());  // a regular file within limits().file_bytes
+}
+
 // Writes by extension: .png, .ppm, .pfm or .exr.
-inline void write_image(const image& img, const std::filesystem::path& path) {
+ZRAKA_COMPILED_FN void write_image(const image& img, const std::filesystem::path& path) {
   check_output_name(path);  // "" or "folder/" say so, rather than "unknown image type ''"
   const auto ext = path.extension().string();
   if (ext == ".png") write_png(img, path);
@@ -273,5 +291,6 @@ inline void write_image(const image& img, const std::filesystem::path& path) {
   else if (ext == ".exr") write_exr(img, path);
   else throw error("unknown image type '" + ext + "' for " + path.string() + " (use .png, .ppm, .pfm or .exr)");
 }
+#endif  // ZRAKA_COMPILED_DEFINITIONS
 
 }  // namespace zraka

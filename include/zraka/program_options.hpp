@@ -14,6 +14,7 @@
 // shows every default; a bad value is "error: ..." and exit code 1.
 #include <zraka/atomic_file.hpp>
 #include <zraka/cli.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
 #include <zraka/render.hpp>
@@ -36,32 +37,23 @@ enum class take : unsigned {
 constexpr take operator|(take a, take b) { return take(unsigned(a) | unsigned(b)); }
 constexpr bool has(take set, take one) { return (unsigned(set) & unsigned(one)) == unsigned(one); }
 
+namespace detail {
+// The bodies of output_folder and output_file below, compiled (compiled.hpp); the root and the
+// folder are arguments because only the program knows its resource root.
+ZRAKA_COMPILED_FN std::filesystem::path output_folder_in(const std::filesystem::path& resource_root);
+ZRAKA_COMPILED_FN std::filesystem::path output_file_in(const std::filesystem::path& name,
+                                                       const std::filesystem::path& folder);
+}  // namespace detail
+
 // Where a relative output name goes: <checkout>/build/out/ when the program runs inside the
 // source checkout (outside its build folders), else the current folder ("" returned).
-inline std::filesystem::path output_folder() {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path root = fs::weakly_canonical(resource_root(), ec);
-  if (ec || !fs::exists(root / "CMakeLists.txt", ec) || !fs::exists(root / "include" / "zraka", ec)) return {};
-  const fs::path here = fs::weakly_canonical(fs::current_path(ec), ec);
-  if (ec) return {};
-  const fs::path rel = here.lexically_relative(root);
-  if (rel.empty() || *rel.begin() == "..") return {};  // outside the checkout
-  if (rel != "." && rel.begin()->string().starts_with("build")) return {};  // build/, build-debug/...
-  return root / "build" / "out";
-}
+inline std::filesystem::path output_folder() { return detail::output_folder_in(resource_root()); }
 
 // The file an output name stands for: a bare file name ("x.png") goes to output_folder(), which
 // is made if needed; a name with a folder ("renders/x.png", "/tmp/x.png") is taken as given.
 inline std::filesystem::path output_file(const std::filesystem::path& name) {
   if (name.has_parent_path()) return name;
-  const std::filesystem::path dir = output_folder();
-  if (dir.empty()) return name;
-  std::error_code ec;  // a folder that cannot be made shows up as a clear error when writing
-  std::filesystem::create_directories(dir, ec);
-  // say it short: build/out/x.png when run from the checkout's top
-  const auto rel = (dir / name).lexically_relative(std::filesystem::current_path(ec));
-  return ec || rel.empty() ? dir / name : rel;
+  return detail::output_file_in(name, output_folder());
 }
 
 // An input that an earlier run wrote (e.g. --reference ref.pfm): as given when it exists there,
@@ -94,32 +86,16 @@ struct program_options {
   // true: size, spp, depth and seed default to the scene's own settings (apply_to); --help says so.
   bool scene_settings = false;
 
-  CLI::App app;
+  cli_app app;  // the program's own options: app.add_option("--name", value, "help")
 
-  program_options(std::string description, take options) : app(std::move(description)), taken_(options) {
-    app.option_defaults()->always_capture_default();  // --help shows every default, the chapter's own too
+  program_options(std::string description, take options) : app(description), taken_(options) {
+    app.always_capture_default();  // --help shows every default, the chapter's own too
   }
 
   // Adds the shared options, parses, checks. Returns the exit code when main should stop now.
   std::optional<int> parse(int argc, char** argv) {
-    add_shared();
-    if (const auto done = parse_command_line(app, argc, argv)) return done;
-    try {
-      if (has(taken_, take::threads)) threads = resolve_threads(threads);
-      if (has(taken_, take::out)) {
-        check_output_name(out);
-        const std::string ext = std::filesystem::path(out).extension().string();
-        bool known = false;
-        std::string list;
-        for (const std::string& t : out_types) known |= ext == t, list += (list.empty() ? "" : ", ") + t;
-        if (!known) throw error("--out " + out + ": unknown image type '" + ext + "' (use " + list + ")");
-        out = output_file(out).string();
-      }
-      if (!scene_settings) check();
-    } catch (const error& e) {
-      std::fprintf(stderr, "error: %s\n", e.what());
-      return 1;
-    }
+    if (const auto done = parse_shared(argc, argv)) return done;
+    if (has(taken_, take::out)) out = output_file(out).string();  // here: it needs the resource root
     return std::nullopt;
   }
 
@@ -159,41 +135,94 @@ struct program_options {
  private:
   take taken_;
 
-  void check() const {
-    if (has(taken_, take::size)) image::check_size(width, height);
-    if (has(taken_, take::spp) && (spp < 1 || spp > 65536))
-      throw error("--spp must be in 1..65536, got " + std::to_string(spp));
-    if (has(taken_, take::depth) && (depth < min_depth || depth > max_depth))
-      throw error("--depth must be in " + std::to_string(min_depth) + ".." + std::to_string(max_depth) +
-                  ", got " + std::to_string(depth));
-  }
-
-  void add_shared() {
-    auto dflt = [&](CLI::Option* o) {
-      if (scene_settings) o->default_str("the scene's");
-    };
-    if (has(taken_, take::scene))
-      app.add_option("--scene", scene, "a scene name (" + (scene_names.empty() ? "see named_scenes.hpp" : scene_names) +
-                                           ") or a .yaml scene file")
-        ;
-    if (has(taken_, take::size)) {
-      dflt(app.add_option("--width", width, "image width in pixels"));
-      dflt(app.add_option("--height", height, "image height in pixels"));
-    }
-    if (has(taken_, take::spp)) dflt(app.add_option("--spp", spp, "samples per pixel"));
-    if (has(taken_, take::depth))
-      dflt(app.add_option("--depth", depth, "maximum bounces (" + std::to_string(min_depth) + ".." +
-                                                std::to_string(max_depth) + ")"));
-    if (has(taken_, take::seed)) dflt(app.add_option("--seed", seed, "random seed (same seed, same result)"));
-    if (has(taken_, take::threads))
-      app.add_option("--threads", threads, "threads (0 = all cores)");
-    if (has(taken_, take::out)) {
-      std::string types;
-      for (const std::string& t : out_types) types += (types.empty() ? "" : ", ") + t;
-      app.add_option("--out", out, "output file; its extension (" + types +
-                                       ") picks the format; a bare name run inside the checkout goes to build/out/");
-    }
-  }
+  // The parts without templates, compiled once into zraka::compiled (compiled.hpp).
+  ZRAKA_COMPILED_FN std::optional<int> parse_shared(int argc, char** argv);
+  ZRAKA_COMPILED_FN void check() const;
+  ZRAKA_COMPILED_FN void add_shared();
 };
 
 }  // namespace zraka
+
+#if ZRAKA_COMPILED_DEFINITIONS
+namespace zraka {
+ZRAKA_COMPILED_FN std::filesystem::path detail::output_folder_in(const std::filesystem::path& resource_root) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path root = fs::weakly_canonical(resource_root, ec);
+  if (ec || !fs::exists(root / "CMakeLists.txt", ec) || !fs::exists(root / "include" / "zraka", ec)) return {};
+  const fs::path here = fs::weakly_canonical(fs::current_path(ec), ec);
+  if (ec) return {};
+  const fs::path rel = here.lexically_relative(root);
+  if (rel.empty() || *rel.begin() == "..") return {};  // outside the checkout
+  if (rel != "." && rel.begin()->string().starts_with("build")) return {};  // build/, build-debug/...
+  return root / "build" / "out";
+}
+
+ZRAKA_COMPILED_FN std::filesystem::path detail::output_file_in(const std::filesystem::path& name,
+                                                                const std::filesystem::path& dir) {
+  if (dir.empty()) return name;
+  std::error_code ec;  // a folder that cannot be made shows up as a clear error when writing
+  std::filesystem::create_directories(dir, ec);
+  // say it short: build/out/x.png when run from the checkout's top
+  const auto rel = (dir / name).lexically_relative(std::filesystem::current_path(ec));
+  return ec || rel.empty() ? dir / name : rel;
+}
+
+ZRAKA_COMPILED_FN std::optional<int> program_options::parse_shared(int argc, char** argv) {
+  add_shared();
+  if (const auto done = parse_command_line(app, argc, argv)) return done;
+  try {
+    if (has(taken_, take::threads)) threads = resolve_threads(threads);
+    if (has(taken_, take::out)) {
+      check_output_name(out);
+      const std::string ext = std::filesystem::path(out).extension().string();
+      bool known = false;
+      std::string list;
+      for (const std::string& t : out_types) known |= ext == t, list += (list.empty() ? "" : ", ") + t;
+      if (!known) throw error("--out " + out + ": unknown image type '" + ext + "' (use " + list + ")");
+    }
+    if (!scene_settings) check();
+  } catch (const error& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return std::nullopt;
+}
+
+ZRAKA_COMPILED_FN void program_options::check() const {
+  if (has(taken_, take::size)) image::check_size(width, height);
+  if (has(taken_, take::spp) && (spp < 1 || spp > 65536))
+    throw error("--spp must be in 1..65536, got " + std::to_string(spp));
+  if (has(taken_, take::depth) && (depth < min_depth || depth > max_depth))
+    throw error("--depth must be in " + std::to_string(min_depth) + ".." + std::to_string(max_depth) +
+                ", got " + std::to_string(depth));
+}
+
+ZRAKA_COMPILED_FN void program_options::add_shared() {
+  auto dflt = [&](cli_option* o) {
+    if (scene_settings) o->default_str("the scene's");
+  };
+  if (has(taken_, take::scene))
+    app.add_option("--scene", scene, "a scene name (" + (scene_names.empty() ? "see named_scenes.hpp" : scene_names) +
+                                         ") or a .yaml scene file")
+      ;
+  if (has(taken_, take::size)) {
+    dflt(app.add_option("--width", width, "image width in pixels"));
+    dflt(app.add_option("--height", height, "image height in pixels"));
+  }
+  if (has(taken_, take::spp)) dflt(app.add_option("--spp", spp, "samples per pixel"));
+  if (has(taken_, take::depth))
+    dflt(app.add_option("--depth", depth, "maximum bounces (" + std::to_string(min_depth) + ".." +
+                                              std::to_string(max_depth) + ")"));
+  if (has(taken_, take::seed)) dflt(app.add_option("--seed", seed, "random seed (same seed, same result)"));
+  if (has(taken_, take::threads))
+    app.add_option("--threads", threads, "threads (0 = all cores)");
+  if (has(taken_, take::out)) {
+    std::string types;
+    for (const std::string& t : out_types) types += (types.empty() ? "" : ", ") + t;
+    app.add_option("--out", out, "output file; its extension (" + types +
+                                     ") picks the format; a bare name run inside the checkout goes to build/out/");
+  }
+}
+}  // namespace zraka
+#endif

@@ -22,6 +22,7 @@
 #include <zraka/affine.hpp>
 #include <zraka/bpt.hpp>
 #include <zraka/environment_file.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
 #include <zraka/input_file.hpp>
@@ -117,8 +118,9 @@ namespace detail {
 
 class scene_reader {
  public:
-  scene_reader(std::string name, std::filesystem::path dir, const scene_registry& reg = {})
-      : name_(std::move(name)), dir_(std::move(dir)), registry_(reg) {}
+  // `root`: the resource root (resources.hpp), passed in, see parse_scene.
+  scene_reader(std::string name, std::filesystem::path dir, const scene_registry& reg, std::filesystem::path root)
+      : name_(std::move(name)), dir_(std::move(dir)), root_(std::move(root)), registry_(reg) {}
 
   loaded_scene read(const std::string& text) {
     YAML::Node loaded;
@@ -154,6 +156,7 @@ class scene_reader {
   friend class zraka::scene_node;
   std::string name_;
   std::filesystem::path dir_;
+  std::filesystem::path root_;
   scene_registry registry_;  // a copy: a temporary registry may be passed
   std::map<int, YAML::Node> registered_resolved_;  // material index -> its resolved entry
   loaded_scene out_;
@@ -747,10 +750,10 @@ class scene_reader {
       if (std::filesystem::exists(p)) return p;
       fail(n, field, "file " + p.string() + " not found");
     }
-    for (const auto& base : {dir_, resource_root(), resource_root() / "scenes"})
+    for (const auto& base : {dir_, root_, root_ / "scenes"})
       if (std::filesystem::exists(base / p)) return base / p;
     fail(n, field, "file '" + p.string() + "' not found (looked next to the scene file, in " +
-                       resource_root().string() + " and in its scenes/)");
+                       root_.string() + " and in its scenes/)");
   }
   // [end]
 
@@ -1040,11 +1043,37 @@ inline std::string scene_node::text(const std::string& key, const std::string& f
   return s;
 }
 
+// Reading a scene is compiled once into zraka::compiled when zraka is built with yaml-cpp
+// (ZRAKA_COMPILED_SCENE_FILE, see compiled.hpp): ~60% of a scene-loading chapter's object code.
+// The resource root is an argument: only the program knows its own (ZRAKA_RESOURCE_DIR).
+#if defined(ZRAKA_COMPILED_SCENE_FILE)
+#define ZRAKA_SCENE_FILE_FN
+#else
+#define ZRAKA_SCENE_FILE_FN inline
+#endif
+#if !defined(ZRAKA_COMPILED_SCENE_FILE) || defined(ZRAKA_COMPILING)
+#define ZRAKA_SCENE_FILE_DEFINITIONS 1
+#else
+#define ZRAKA_SCENE_FILE_DEFINITIONS 0
+#endif
+namespace detail {
+ZRAKA_SCENE_FILE_FN loaded_scene parse_scene_in(const std::string& text, const std::string& name,
+                                                const std::filesystem::path& dir, const scene_registry& types,
+                                                const std::filesystem::path& resource_root)
+#if ZRAKA_SCENE_FILE_DEFINITIONS
+{
+  return scene_reader(name, dir, types, resource_root).read(text);
+}
+#else
+    ;
+#endif
+}  // namespace detail
+
 // Reads a scene from YAML text; `name` is used in error messages and `dir` to find the files
 // the scene names; `types` are the types the program registered (scene_registry.hpp).
 inline loaded_scene parse_scene(const std::string& text, const std::string& name,
                                 const std::filesystem::path& dir = ".", const scene_registry& types = {}) {
-  return detail::scene_reader(name, dir, types).read(text);
+  return detail::parse_scene_in(text, name, dir, types, resource_root());
 }
 
 // Reads a scene file: a path as given, or relative to the resource root (resources.hpp).

@@ -19,6 +19,7 @@
 //   pdf_integral_over_directions                    integral of a pdf over the sphere (same grid)
 //   mean_within                                     mean within k standard errors (estimator.hpp)
 //   images_match, image_matches_file                RMSE, per-channel mean, max |difference|
+//   noise_floor                                     an image tolerance from renders of a few seeds
 //   derivative_matches                              central differences, step from the scale
 //   normal_matches_surface                          a shape's normal vs the surface its own
 //                                                   intersect() traces out around each hit
@@ -326,6 +327,45 @@ inline result image_matches_file(const image& got, const std::filesystem::path& 
     return {false, e.what()};
   }
   r.message = reference.filename().string() + " " + r.message;
+  return r;
+}
+
+// The noise floor of a Monte Carlo render, so that an instructor sets an image tolerance with one
+// call: render(seed) makes the image for a seed (the solution at the spp the test will use); it
+// is called for `seeds` seeds (2..64), and every image after the first is compared with the first
+// (two independent renders differ by sqrt(2) times the per-render noise, as a student's render
+// differs from a reference of the same spp). The tolerance is `margin` times the largest
+// difference seen in each measure (RMSE, channel mean shift, max |difference|): a correct
+// student's image then passes images_match, a wrong one fails once its error is above the noise.
+//   const auto floor = zt::noise_floor([&](std::uint64_t s) { return render_solution(s); });
+//   CHECK_MESSAGE(zt::images_match(render_student(99), render_solution(1), floor.tolerance).ok, ...);
+struct noise_floor_result {
+  image_tolerance tolerance;  // margin x floor
+  image_difference floor;     // the largest difference between renders of different seeds
+  int seeds = 0;
+  std::string message;
+};
+template <class Render>
+noise_floor_result noise_floor(Render&& render, int seeds = 4, double margin = 2.0, std::uint64_t first_seed = 1) {
+  if (seeds < 2 || seeds > 64) throw error("noise_floor: seeds must be in 2..64, got " + std::to_string(seeds));
+  if (!(margin >= 1) || !std::isfinite(margin)) throw error("noise_floor: margin must be finite and >= 1, got " + num(margin));
+  const image first = render(first_seed);
+  noise_floor_result r;
+  r.seeds = seeds;
+  for (int i = 1; i < seeds; ++i) {
+    const image other = render(first_seed + std::uint64_t(i));
+    if (other.width != first.width || other.height != first.height)
+      throw error("noise_floor: the renders differ in size between seeds");
+    if (first.count_nonfinite() || other.count_nonfinite()) throw error("noise_floor: a render has NaN/inf pixels");
+    const image_difference d = compare_images(other, first);
+    r.floor.rmse = std::max(r.floor.rmse, d.rmse);
+    r.floor.channel_mean = std::max(r.floor.channel_mean, d.channel_mean);
+    if (d.max_abs > r.floor.max_abs) r.floor.max_abs = d.max_abs, r.floor.worst_x = d.worst_x, r.floor.worst_y = d.worst_y;
+  }
+  r.tolerance = {margin * r.floor.rmse, margin * r.floor.channel_mean, margin * r.floor.max_abs};
+  r.message = "noise floor over " + std::to_string(seeds) + " seeds: RMSE " + num(r.floor.rmse) +
+              ", channel mean shift " + num(r.floor.channel_mean) + ", max |difference| " + num(r.floor.max_abs) +
+              "; tolerance " + num(margin) + "x that";
   return r;
 }
 

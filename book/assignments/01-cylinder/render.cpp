@@ -12,7 +12,7 @@
 int main(int argc, char** argv) {
   int width = 160, height = 120;
   std::string out = "cylinder.png";
-  CLI::App app{"Assignment 01: ray-cast a cylinder shaded by its normal, write a PNG"};
+  zraka::cli_app app{"Assignment 01: ray-cast a cylinder shaded by its normal, write a PNG"};
   app.add_option("--width", width, "image width in pixels");
   app.add_option("--height", height, "image height in pixels");
   app.add_option("--out", out, "output file (.png, .ppm or .pfm)");

@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   double alpha = 0.3;
   std::uint64_t seed = 1;
   std::string out = "ggx.png";
-  CLI::App app{"Assignment 02: the GGX lobe, D(h) against a histogram of its samples, as a PNG"};
+  zraka::cli_app app{"Assignment 02: the GGX lobe, D(h) against a histogram of its samples, as a PNG"};
   app.add_option("--size", size, "height of the image (each half is size x size)");
   app.add_option("--samples", samples, "number of samples in the histogram");
   app.add_option("--alpha", alpha, "roughness");

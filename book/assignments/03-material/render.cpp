@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   double sigma = 1.0;
   std::uint64_t seed = 1;
   std::string out = "oren_nayar.png";
-  CLI::App app{"Assignment 03: two Oren-Nayar spheres (sigma 0 and --sigma) in the Cornell box, as a PNG"};
+  zraka::cli_app app{"Assignment 03: two Oren-Nayar spheres (sigma 0 and --sigma) in the Cornell box, as a PNG"};
   app.add_option("--size", size, "width and height of the image in pixels");
   app.add_option("--spp", spp, "samples per pixel");
   app.add_option("--sigma", sigma, "roughness of the right sphere, radians");

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   int width = 160, height = 120, spp = 64;
   std::uint64_t seed = 1;
   std::string out = "ring.png";
-  CLI::App app{"Assignment 04: the student's ring as an area light and as an object, path-traced, as a PNG"};
+  zraka::cli_app app{"Assignment 04: the student's ring as an area light and as an object, path-traced, as a PNG"};
   app.add_option("--width", width, "image width in pixels");
   app.add_option("--height", height, "image height in pixels");
   app.add_option("--spp", spp, "samples per pixel");

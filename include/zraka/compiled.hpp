@@ -1,0 +1,25 @@
+#pragma once
+// zraka is header-only, with a few exceptions: non-template code that nearly every program calls
+// and that every unit would otherwise compile again at -O3 (a chapter's main.cpp went from
+// 9.6 to ~2 CPU-s): the command-line layer on CLI11 (cli.hpp), the shared options' parsing and
+// checks (program_options.hpp), writing images with stb_image_write's PNG encoder (image_io.hpp),
+// atomic file writing (atomic_file.hpp) and image::check_size (image.hpp).
+// Their functions are marked ZRAKA_COMPILED_FN:
+//   - linking the library zraka::compiled (src/compiled.cpp, built and installed with zraka) defines
+//     ZRAKA_COMPILED: the headers only declare them, the library holds them, compiled once;
+//   - without it (an outside project with only include/ on its path) they are inline functions
+//     defined in the headers, and cli.hpp needs CLI11's headers (README.md's table).
+// Every unit of one program must be built the same way; linking zraka::compiled does that.
+// A function not defined here must not use ZRAKA_RESOURCE_DIR (resources.hpp): the library is
+// built with the build tree's, an installed program has the install prefix's.
+#if defined(ZRAKA_COMPILED)
+#define ZRAKA_COMPILED_FN
+#else
+#define ZRAKA_COMPILED_FN inline
+#endif
+// Whether this unit sees the definitions: header-only, or src/compiled.cpp (ZRAKA_COMPILING).
+#if !defined(ZRAKA_COMPILED) || defined(ZRAKA_COMPILING)
+#define ZRAKA_COMPILED_DEFINITIONS 1
+#else
+#define ZRAKA_COMPILED_DEFINITIONS 0
+#endif

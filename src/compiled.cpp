@@ -1,0 +1,15 @@
+// The compiled part of zraka, the library zraka::compiled (include/zraka/compiled.hpp): the
+// definitions that the headers below hold for header-only use, compiled once here instead of in
+// every program. One unit, so that each is defined once.
+#ifndef ZRAKA_COMPILED
+#error "build src/compiled.cpp through the zraka_compiled target (it defines ZRAKA_COMPILED)"
+#endif
+#define ZRAKA_COMPILING
+#include <zraka/atomic_file.hpp>
+#include <zraka/cli.hpp>
+#include <zraka/image.hpp>
+#include <zraka/image_io.hpp>
+#include <zraka/program_options.hpp>
+#if defined(ZRAKA_COMPILED_SCENE_FILE)  // built with yaml-cpp
+#include <zraka/scene_file.hpp>
+#endif
