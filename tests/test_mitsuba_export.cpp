@@ -72,3 +72,36 @@ TEST_CASE("mitsuba_export: what the converter cannot express is refused by name"
   unknown_kind.materials[1].kind = static_cast<material_kind>(99);
   CHECK_THROWS_WITH_AS(mitsuba_scene_json(unknown_kind, 8, 8, 1), doctest::Contains("material 1"), error);
 }
+
+TEST_CASE("mitsuba_export: a homogeneous medium is written with the material that bounds it") {
+  scene sc = small_scene();
+  medium fog;
+  fog.name = "fog";
+  fog.sigma_a = rgb(0.25f), fog.sigma_s = rgb(0.5f, 0.5f, 0.75f), fog.g = 0.3;
+  sc.materials[0].interior = sc.add_medium(fog);
+  sc.global_medium = 0;
+  const std::string j = mitsuba_scene_json(sc, 8, 8, 1);
+  CHECK(j.find("\"global_medium\": 0") != std::string::npos);
+  CHECK(count(j, "{\"name\": \"fog\"") == 1);
+  CHECK(number_after(j, "\"g\": ") == 0.3);
+  CHECK(count(j, "\"interior\": 0") == 1);
+  CHECK(count(j, "\"interior\": -1") == 1);  // the emitter bounds no medium
+}
+
+TEST_CASE("mitsuba_export: a density grid, an environment and a rough material are refused by name") {
+  scene grid = small_scene();
+  medium smoke;
+  smoke.name = "smoke";
+  smoke.sigma_s = rgb(1.0f);
+  smoke.density = std::make_shared<density_grid>(density_grid::noise(aabb{vec3(-1.0), vec3(1.0)}, 4, 2.0, 1));
+  grid.add_medium(smoke);
+  CHECK_THROWS_WITH_AS(mitsuba_scene_json(grid, 8, 8, 1), doctest::Contains("medium 'smoke' is a density grid"), error);
+
+  scene sky = small_scene();
+  sky.environment = std::make_shared<environment_map>(environment_map::constant(rgb(1.0f), 1.0f, 0.0));
+  CHECK_THROWS_WITH_AS(mitsuba_scene_json(sky, 8, 8, 1), doctest::Contains("environment light"), error);
+
+  scene rough = small_scene();
+  rough.materials[0].kind = material_kind::rough_conductor;
+  CHECK_THROWS_WITH_AS(mitsuba_scene_json(rough, 8, 8, 1), doctest::Contains("a rough_conductor cannot be exported yet"), error);
+}
