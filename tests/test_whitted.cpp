@@ -3,6 +3,7 @@
 // the same bits on any number of threads; shadows from occluders at any distance; total
 // internal reflection inside glass and energy conservation of Fresnel splitting; a scene file
 // rendered end to end.
+#include <zraka/default_scene.hpp>
 #include <zraka/scene_file.hpp>
 #include <zraka/whitted.hpp>
 
@@ -154,4 +155,27 @@ TEST_CASE("whitted: a mirror shows the light's colour; depth 1 stops at the mirr
   CHECK(whitted_radiance(sc, light_set(sc), ray({0, 1, 0.5}, {0, -1, -0.1}), g, opt, rays) == rgb(2));  // 0.5 x 4
   opt.max_depth = 0;  // no reflection allowed: the mirror is black
   CHECK(whitted_radiance(sc, light_set(sc), ray({0, 1, 0.5}, {0, -1, -0.1}), g, opt, rays) == rgb(0));
+}
+
+TEST_CASE("whitted: the default scene built in C++ is scenes/default.yaml, bit for bit") {
+  scene cpp = default_scene();
+  loaded_scene yaml = load_scene_file("scenes/default.yaml");
+  CHECK(cpp.spheres.size() == yaml.sc.spheres.size());
+  CHECK(cpp.planes.size() == yaml.sc.planes.size());
+  CHECK(cpp.quads.size() == yaml.sc.quads.size());
+  CHECK(cpp.point_lights.size() == yaml.sc.point_lights.size());
+  REQUIRE(cpp.meshes.size() == yaml.sc.meshes.size());
+  CHECK(cpp.meshes[0].shape.triangle_count() == yaml.sc.meshes[0].shape.triangle_count());
+  CHECK(cpp.settings.width == yaml.sc.settings.width);
+  CHECK(cpp.settings.spp == yaml.sc.settings.spp);
+  CHECK(cpp.ambient == yaml.sc.ambient);
+  CHECK(cpp.background == yaml.sc.background);
+  for (scene* sc : {&cpp, &yaml.sc}) sc->settings.width = 80, sc->settings.height = 48, sc->settings.spp = 2;
+  image a(80, 48), b(80, 48);
+  render_whitted(cpp, a, whitted_options{}, render_options{2, 16, false});
+  render_whitted(yaml.sc, b, whitted_options{}, render_options{2, 16, false});
+  double sum = 0;
+  for (const rgb& p : a.pixels) sum += double(p.x + p.y + p.z);
+  CHECK(sum > 0);
+  CHECK(a.pixels == b.pixels);
 }

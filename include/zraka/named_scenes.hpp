@@ -1,10 +1,11 @@
 #pragma once
 // The registry of named scenes: what `--scene NAME` means in every program (issue 12). A name is
-// either built here in C++ (the Cornell boxes, the furnace, the spheres of book 4.3) or stands
+// either built here in C++ (the default scene, the Cornell boxes, the furnace, the spheres of book 4.3) or stands
 // for a file scenes/NAME.yaml under the resource root. A `.yaml` path is a file of its own; see
 // scene_argument.hpp, which loads either. This header needs no YAML library, so the real-time
 // chapter, its tests and its benchmark use it as they are.
 #include <zraka/cornell.hpp>
+#include <zraka/default_scene.hpp>
 #include <zraka/error.hpp>
 #include <zraka/scene.hpp>
 
@@ -67,7 +68,7 @@ inline constexpr std::array<named_scene, 17> named_scenes{{
     {"cornell-spheres", [] { return cornell_box<double>(cornell_variant::spheres); }, "a mirror and a glass sphere"},
     {"furnace", furnace_scene, "inside a glowing sphere (closed form)"},
     {"spheres", spheres_scene, "diffuse spheres under a sky (book 4.3)"},
-    {"default", nullptr, "scenes/default.yaml"},
+    {"default", default_scene, "one ball of each material, a cube, two lights (book 2.2)"},
     {"box", nullptr, "scenes/box.yaml"},
     {"teapot", nullptr, "scenes/teapot.yaml"},
     {"glass-both", nullptr, "scenes/glass-both.yaml"},
