@@ -98,6 +98,7 @@ int main(int argc, char** argv) {
       throw error("--strategies must be from 0 to depth + 1 = " + std::to_string(cli.depth + 1));
     scene sc = load_scene_argument(cli.scene).sc;
     sc.settings.width = cli.width, sc.settings.height = cli.height;
+    check_bdpt_scene(sc);  // before the reference is rendered
     sc.build_acceleration();
     const int W = cli.width, H = cli.height;
     const render_options ro = cli.render();

@@ -138,6 +138,7 @@ int main(int argc, char** argv) {
     stopwatch total;
     scene sc = load_scene_argument(cli.scene).sc;
     sc.settings.width = cli.width, sc.settings.height = cli.height;
+    check_photon_scene(sc, light_set(sc));  // before the reference is rendered
 
     // [listing sppm-options]
     sppm_options so;

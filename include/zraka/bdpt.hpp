@@ -92,20 +92,25 @@ template <class T> struct bdpt_vertex_t {
   T pdf_rev = T(0);    // ... and from the other side
 };
 
+// What this tracer cannot render, refused by name; programs call it before any other work.
+template <class T> void check_bdpt_scene(const scene_t<T>& sc) {
+  // Vertices in media would need the phase function and transmittance in every density ratio.
+  if (!sc.media.empty())
+    throw error("bdpt: the scene has participating media (" + sc.media_names() +
+                "), which this bidirectional tracer does not handle; render it with pathtrace");
+  // Light subpaths start on surfaces; an environment would need emission from a disc at infinity.
+  if (sc.environment)
+    throw error("bdpt: the scene has an environment light ('" + sc.environment->name() +
+                "'), which this bidirectional tracer cannot start light subpaths on; render it with pathtrace");
+}
+
 template <class T> class bdpt_t {
  public:
   using vertex = bdpt_vertex_t<T>;
 
   bdpt_t(const scene_t<T>& sc, const bdpt_options& opt)
       : sc_(sc), lights_(sc, opt.lights), cam_(sc.prepared_camera()), eye_(cam_), opt_(opt) {
-    // Vertices in media would need the phase function and transmittance in every density ratio.
-    if (!sc.media.empty())
-      throw error("bdpt: the scene has participating media (" + sc.media_names() +
-                  "), which this bidirectional tracer does not handle; render it with pathtrace");
-    // Light subpaths start on surfaces; an environment would need emission from a disc at infinity.
-    if (sc.environment)
-      throw error("bdpt: the scene has an environment light ('" + sc.environment->name() +
-                  "'), which this bidirectional tracer cannot start light subpaths on; render it with pathtrace");
+    check_bdpt_scene(sc);
     if (opt.max_depth < 0) throw error("bdpt: the maximum depth must not be negative, got " + std::to_string(opt.max_depth));
     if (opt.rr_depth < 0) throw error("bdpt: the Russian roulette depth must not be negative");
     if (opt.strategy_length < 0 || opt.strategy_length > opt.max_depth + 1)
