@@ -149,8 +149,10 @@ inline image parse_exr(std::string_view bytes, const std::string& name) {
   EXRHeader header;
   InitEXRHeader(&header);
   const char* err = nullptr;
-  if (const int rc = ParseEXRHeaderFromMemory(&header, &version, mem, bytes.size(), &err); rc != TINYEXR_SUCCESS)
+  if (const int rc = ParseEXRHeaderFromMemory(&header, &version, mem, bytes.size(), &err); rc != TINYEXR_SUCCESS) {
+    FreeEXRHeader(&header);  // what it parsed before the fault
     fail("malformed EXR header", rc, err);
+  }
   const long long w = 1LL + header.data_window.max_x - header.data_window.min_x;
   const long long h = 1LL + header.data_window.max_y - header.data_window.min_y;
   FreeEXRHeader(&header);
