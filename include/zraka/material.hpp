@@ -198,7 +198,7 @@ template <class T> struct scatter_t {
 template <class T> lambert_phong_brdf_t<T> brdf_at(const material& m, const hit_t<T>& h) {
   lambert_phong_brdf_t<T> f;
   if (m.kind == material_kind::lambertian) {
-    f.diffuse.rho = vec3_t<T>(evaluate(m.albedo, h.p, h.facing_normal()));
+    f.diffuse.rho = vec3_t<T>(evaluate(m.albedo, h.p, h.facing_normal(), h.uv));
     f.glossy.rho_s = vec3_t<T>(0);
   } else {
     f.diffuse.rho = vec3_t<T>(m.kd);
@@ -269,7 +269,7 @@ std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const
       return scatter_t<T>{vec3_t<T>(sm->wi), rgb(sm->weight), T(sm->pdf), false};
     }
     if (m.kind == material_kind::lambertian) {  // cosine-weighted: f cos / pdf = albedo exactly
-      const lambert_brdf_t<T> f{vec3_t<T>(evaluate(m.albedo, h.p, n))};
+      const lambert_brdf_t<T> f{vec3_t<T>(evaluate(m.albedo, h.p, n, h.uv))};
       const auto sm = f.sample(-d, n, vec2_t<T>(u));
       if (!sm) return std::nullopt;  // grazing: d along the surface, or rounding on the horizon
       return scatter_t<T>{sm->wi, rgb(sm->weight), sm->pdf, false};
@@ -295,7 +295,7 @@ std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const
       const vec3_t<T> ball = sample_unit_ball(vec3_t<T>(u0, u1, u2));
       const auto wi = fuzzy_mirror(d, n, T(m.fuzz), ball);
       if (!wi) return std::nullopt;  // pushed below the surface: absorbed
-      return scatter_t<T>{*wi, evaluate(m.albedo, h.p, n), T(0), true};
+      return scatter_t<T>{*wi, evaluate(m.albedo, h.p, n, h.uv), T(0), true};
     }
     // Glass: reflect with probability R (exact Fresnel), else refract; the weight is 1 either way.
     // The eta^2 change of radiance across the boundary is left out: it cancels for every path

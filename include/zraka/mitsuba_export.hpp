@@ -39,6 +39,8 @@ inline std::string mitsuba_scene_json(const scene& sc, int width, int height, in
     if (is_custom(m)) throw error("--export: a custom BSDF ('" + m.bsdf->name() + "') cannot be exported");
     if (is_microfacet(m))
       throw error(std::string("--export: a ") + kind_name(m.kind) + " cannot be exported yet (tools/mitsuba_reference.py has no rough materials)");
+    if (m.albedo.type == texture::kind::image || m.albedo.type == texture::kind::noise)
+      throw error("--export: material " + std::to_string(i) + " has " + describe(m.albedo) + ", which is not exported yet");
     if (!detail::mitsuba_kind(m.kind))
       throw error("--export: material " + std::to_string(i) + " is of a kind the converter does not know");
   }

@@ -118,6 +118,9 @@ template <class T> struct scene_t {
   object_ref add(const triangle_t<T>& t, int mat) { return push(triangles, t, mat, shape_kind::triangle); }
   object_ref add(mesh_t<T> m, int mat) {
     check_material(mat);
+    if (!m.texcoords.empty() && m.texcoords.size() != m.positions.size())
+      throw error("mesh: " + std::to_string(m.texcoords.size()) + " texture coordinates for " +
+                  std::to_string(m.positions.size()) + " positions");
     if (!m.normals.empty() && m.normals.size() != m.positions.size())
       throw error("mesh: " + std::to_string(m.normals.size()) + " normals for " +
                   std::to_string(m.positions.size()) + " vertices");

@@ -25,6 +25,7 @@
 #include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
+#include <zraka/texture_file.hpp>
 #include <zraka/input_file.hpp>
 #include <zraka/limits.hpp>
 #include <zraka/obj_file.hpp>
@@ -252,6 +253,14 @@ class scene_reader {
     if (std::abs(x) > max_coordinate) fail(n, field, "must be within +-1e18 (its square would overflow), got " + n.Scalar());
     return x;
   }
+  bool boolean(const YAML::Node& n, const std::string& field) const {
+    if (n.IsScalar()) {
+      const std::string v = n.Scalar();
+      if (v == "true") return true;
+      if (v == "false") return false;
+    }
+    fail(n, field, "expected true or false, got " + scalar_text(n));
+  }
   long long integer(const YAML::Node& n, const std::string& field, long long lo, long long hi) const {
     if (!n.IsScalar()) fail(n, field, "expected an integer, got " + scalar_text(n));
     long long x;
@@ -465,9 +474,15 @@ class scene_reader {
     r["focus_distance"] = num(c.focus_distance);
   }
 
+  // [listing scene-texture]
+  // albedo: a colour, {checker: {even, odd, scale}}, {image: {file, srgb, wrap}} or
+  // {noise: {low, high, frequency, octaves, marble}}
   texture albedo(const YAML::Node& n, const std::string& field) const {
     if (!n.IsMap()) return texture::solid(colour(n, field));
-    if (n.size() != 1 || !n["checker"]) fail(n, field, "expected a colour or {checker: {even, odd, scale}}");
+    if (n.size() == 1 && n["image"]) return image_texture(n["image"], field + ".image");
+    if (n.size() == 1 && n["noise"]) return noise_texture(n["noise"], field + ".noise");
+    if (n.size() != 1 || !n["checker"])
+      fail(n, field, "expected a colour, {checker: {...}}, {image: {file, ...}} or {noise: {...}}");
     const YAML::Node c = n["checker"];
     keys(c, field + ".checker", {"even", "odd", "scale"});
     texture t = texture::checker(texture{}.a, texture{}.b, texture{}.cell);
@@ -479,8 +494,62 @@ class scene_reader {
     }
     return t;
   }
+  texture image_texture(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsMap()) fail(n, field, "expected {file: ..., srgb: true, wrap: repeat}, got " + scalar_text(n));
+    keys(n, field, {"file", "srgb", "wrap"});
+    const YAML::Node f = required(n, "file", field);
+    const std::filesystem::path file = find_file(f, field + ".file");
+    const bool srgb = n["srgb"] ? boolean(n["srgb"], field + ".srgb") : true;
+    const std::string wrap = n["wrap"] ? text(n["wrap"], field + ".wrap") : "repeat";
+    if (wrap != "repeat" && wrap != "clamp") fail(n["wrap"], field + ".wrap", "must be repeat or clamp, got '" + wrap + "'");
+    try {
+      texture t = texture::image_map(std::make_shared<const image>(load_texture_image(file, srgb)), wrap == "repeat",
+                                     f.Scalar());
+      t.srgb = srgb;
+      return t;
+    } catch (const error& e) {  // name the file as the scene does, not by its full path
+      std::string msg = e.what();
+      if (msg.rfind(file.string(), 0) == 0) msg = f.Scalar() + msg.substr(file.string().size());
+      fail(f, field + ".file", msg);
+    }
+  }
+  texture noise_texture(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsMap()) fail(n, field, "expected {low, high, frequency, octaves, marble}, got " + scalar_text(n));
+    keys(n, field, {"low", "high", "frequency", "octaves", "marble"});
+    texture t = texture::noise(rgb(0.1f), rgb(0.9f), 4.0, 1, false);
+    if (n["low"]) t.a = colour(n["low"], field + ".low");
+    if (n["high"]) t.b = colour(n["high"], field + ".high");
+    if (n["frequency"]) {
+      t.frequency = number(n["frequency"], field + ".frequency");
+      if (!(t.frequency > 0 && t.frequency <= 1e6)) fail(n["frequency"], field + ".frequency", "must be in (0, 1e6]");
+    }
+    if (n["octaves"]) t.octaves = int(integer(n["octaves"], field + ".octaves", 1, 16));
+    if (n["marble"]) t.marble = boolean(n["marble"], field + ".marble");
+    return t;
+  }
+  // [end]
   static YAML::Node albedo_node(const texture& t) {
     if (t.type == texture::kind::solid) return flow(t.a);
+    if (t.type == texture::kind::image) {
+      YAML::Node n, c;
+      c["file"] = t.source;
+      c["srgb"] = t.srgb;
+      c["wrap"] = t.repeat ? "repeat" : "clamp";
+      n["image"] = c;
+      n.SetStyle(YAML::EmitterStyle::Flow);
+      return n;
+    }
+    if (t.type == texture::kind::noise) {
+      YAML::Node n, c;
+      c["low"] = flow(t.a);
+      c["high"] = flow(t.b);
+      c["frequency"] = num(t.frequency);
+      c["octaves"] = t.octaves;
+      c["marble"] = t.marble;
+      n["noise"] = c;
+      n.SetStyle(YAML::EmitterStyle::Flow);
+      return n;
+    }
     YAML::Node n, c;
     c["even"] = flow(t.a);
     c["odd"] = flow(t.b);

@@ -43,7 +43,7 @@ struct whitted_options {
 
 // The diffuse colour of a surface: the albedo (a texture) or phong's kd.
 template <class T> rgb diffuse_colour(const material& m, const hit_t<T>& h) {
-  return m.kind == material_kind::phong ? m.kd : evaluate(m.albedo, h.p, h.facing_normal());
+  return m.kind == material_kind::phong ? m.kd : evaluate(m.albedo, h.p, h.facing_normal(), h.uv);
 }
 
 // [listing local-shade]
