@@ -209,6 +209,9 @@ TEST_CASE("what the kernel cannot run is an error naming it: user shapes, custom
   scene far;
   far.add(sphere{{1e300, 0, 0}, 1}, far.add_material(material::lambertian(rgb(0.5f))));
   CHECK_THROWS_WITH_AS(pack_scene(far, 8, 8, depth(4)), doctest::Contains("sphere 0 does not fit in float"), error);
+  scene marble;
+  marble.add(sphere{{0, 0, -3}, 1}, marble.add_material(material::lambertian(texture::noise(rgb(0), rgb(1), 2.0, 4, true))));
+  CHECK_THROWS_WITH_AS(pack_scene(marble, 8, 8, depth(4)), doctest::Contains("material 0 has a marble texture"), error);
 }
 
 TEST_CASE("extreme case: an empty scene packs to empty arrays and the bare options") {

@@ -540,7 +540,7 @@ objects:
   // Whitted and the OpenCL packer refuse them by name.
   scene_t<double> sc = loaded.sc;
   sc.settings.width = sc.settings.height = 4;
-  CHECK_THROWS_WITH_AS(check_whitted_scene(sc), doctest::Contains("material 1 is a rough_conductor"), error);
+  CHECK_THROWS_WITH_AS(check_whitted_scene(sc), doctest::Contains("material 'gold' is a rough_conductor"), error);
   CHECK_THROWS_WITH_AS(pack_scene(sc, 4, 4, path_options{}), doctest::Contains("rough_conductor"), error);
   scene_t<double> glass_only;
   glass_only.add(sphere_t<double>{vec3(0), 1}, glass_only.add_material(material::rough_dielectric(0.1, 1.5)));

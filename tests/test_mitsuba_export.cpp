@@ -103,5 +103,11 @@ TEST_CASE("mitsuba_export: a density grid, an environment and a rough material a
 
   scene rough = small_scene();
   rough.materials[0].kind = material_kind::rough_conductor;
-  CHECK_THROWS_WITH_AS(mitsuba_scene_json(rough, 8, 8, 1), doctest::Contains("a rough_conductor cannot be exported yet"), error);
+  CHECK_THROWS_WITH_AS(mitsuba_scene_json(rough, 8, 8, 1), doctest::Contains("is a rough_conductor, which cannot be exported yet"), error);
+}
+
+TEST_CASE("mitsuba_export: image and noise textures are refused by name") {
+  scene sc = small_scene();
+  sc.materials[0].albedo = texture::noise(rgb(0), rgb(1), 2.0, 3, true);
+  CHECK_THROWS_WITH_AS(mitsuba_scene_json(sc, 8, 8, 1), doctest::Contains("material 0 has a marble texture"), error);
 }

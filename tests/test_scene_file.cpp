@@ -83,7 +83,7 @@ TEST_CASE("scene file: a scene of one sphere has every default of the structs") 
   CHECK(sc.spheres[0].shape.center == vec3(0));
   CHECK(sc.spheres[0].shape.radius == scene_file_defaults::sphere_radius);
   CHECK(sc.spheres[0].material == 0);
-  CHECK(ls.material_names == std::vector<std::string>{"default"});
+  CHECK(sc.material_names == std::vector<std::string>{"default"});
   CHECK_FALSE(sc.has_object_bvh());
   // The printed scene reads back as the same scene.
   CHECK(parse_scene(ls.resolved, "again.yaml").resolved == ls.resolved);

@@ -242,9 +242,9 @@ objects:
         "pathtrace");
   const loaded_scene glossy_only = parse("materials: {g: {type: glossy}}\nobjects: [{type: sphere, material: g}]");
   CHECK(error_of([&] { check_whitted_scene(glossy_only.sc); }) ==
-        "whitted: material 1 is a custom BSDF ('glossy'), which the Whitted ray tracer cannot shade; render it "
+        "whitted: material 'g' is a custom BSDF ('glossy'), which the Whitted ray tracer cannot shade; render it "
         "with pathtrace");
   CHECK(error_of([&] { (void)pack_scene(glossy_only.sc, 8, 8, path_options{}); }) ==
-        "realtime: material 1 is a custom BSDF ('glossy'), which the OpenCL kernel cannot run; render it with "
+        "realtime: material 'g' is a custom BSDF ('glossy'), which the OpenCL kernel cannot run; render it with "
         "pathtrace");
 }

@@ -212,11 +212,14 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   for_each_object(sc, [&](object_ref o) {
     const material& m = sc.material_of(o);
     if (is_custom(m))
-      throw error("realtime: material " + std::to_string(sc.material_index(o)) + " is a custom BSDF ('" +
+      throw error("realtime: " + sc.material_label(sc.material_index(o)) + " is a custom BSDF ('" +
                   m.bsdf->name() + "'), which the OpenCL kernel cannot run; render it with pathtrace");
     if (is_microfacet(m))
-      throw error("realtime: material " + std::to_string(sc.material_index(o)) + " is a " + kind_name(m.kind) +
+      throw error("realtime: " + sc.material_label(sc.material_index(o)) + " is a " + kind_name(m.kind) +
                   " (a microfacet material), which the OpenCL kernel does not implement; render it with pathtrace");
+    if (m.albedo.type == texture::kind::image || m.albedo.type == texture::kind::noise)
+      throw error("realtime: " + sc.material_label(sc.material_index(o)) + " has " + describe(m.albedo) +
+                  ", which the OpenCL kernel does not evaluate; render it with pathtrace");
   });
   const path_tracer_t<T> tracer(sc, opt);  // the CPU's own checks, and its lights
   const light_set_t<T>& lights = tracer.lights;

@@ -361,7 +361,7 @@ template <class T> class light_set_t {
     if (!(l.area > T(0)) || !std::isfinite(l.area)) return;  // degenerate: never hit either
     l.power = mean(m.radiance) * double(l.area) * pi<double> * (m.two_sided ? 2.0 : 1.0);
     if (!std::isfinite(l.power) || !is_finite(m.radiance) || m.radiance.x < 0 || m.radiance.y < 0 || m.radiance.z < 0)
-      throw error("lights: material " + std::to_string(sc_.material_index(o)) +
+      throw error("lights: " + sc_.material_label(sc_.material_index(o)) +
                   " glows with a negative or non-finite radiance, or on a shape of infinite area");
     index_[kind(o.kind)][std::size_t(o.index)] = int(lights_.size());
     lights_.push_back(l);

@@ -57,6 +57,7 @@ struct material {
   double shininess = 32;                       // phong exponent p
   std::shared_ptr<const custom_bsdf> bsdf;     // set: a user-defined BSDF (custom_bsdf.hpp)
   double roughness = 0.1;                      // rough_*: the GGX alpha (microfacet.hpp), (0, 1]
+  std::optional<texture> roughness_map;        // rough_*: set, alpha varies over the surface (alpha_at)
   conductor_fresnel conductor;                 // rough_conductor: eta + i k per channel, or F0
   int interior = -1;  // media (book 6.1): scene.media index inside this closed shape; -1 no change
 
@@ -198,7 +199,7 @@ template <class T> struct scatter_t {
 template <class T> lambert_phong_brdf_t<T> brdf_at(const material& m, const hit_t<T>& h) {
   lambert_phong_brdf_t<T> f;
   if (m.kind == material_kind::lambertian) {
-    f.diffuse.rho = vec3_t<T>(evaluate(m.albedo, h.p, h.facing_normal()));
+    f.diffuse.rho = vec3_t<T>(evaluate(m.albedo, h.p, h.facing_normal(), h.uv));
     f.glossy.rho_s = vec3_t<T>(0);
   } else {
     f.diffuse.rho = vec3_t<T>(m.kd);
@@ -208,17 +209,31 @@ template <class T> lambert_phong_brdf_t<T> brdf_at(const material& m, const hit_
   return f;
 }
 
+// [listing roughness-texture]
+// The GGX alpha at a hit: the material's number, or its roughness texture there (the mean of the
+// texture's three channels). A texel of 0 would be a mirror that the microfacet samplers cannot
+// evaluate, so alpha is kept at 0.001 or more, the sharpest the chi-square tests cover.
+template <class T> T alpha_at(const material& m, const hit_t<T>& h) {
+  if (!m.roughness_map) return T(m.roughness);
+  const rgb c = evaluate(*m.roughness_map, h.p, h.facing_normal(), h.uv);
+  return T(std::clamp((double(c.x) + double(c.y) + double(c.z)) / 3, 1e-3, 1.0));
+}
+// [end]
+
 // The microfacet BSDFs of a hit work in the local frame of its facing normal (microfacet.hpp);
 // the glass's eta = eta_t / eta_i is the index across the surface over the one on wo's side.
 template <class T> rough_dielectric_t<T> rough_glass_at(const material& m, const hit_t<T>& h) {
-  return {ggx_t<T>(T(m.roughness)), T(1) / relative_ior(h.front_face, T(m.ior))};
+  return {ggx_t<T>(alpha_at(m, h)), T(1) / relative_ior(h.front_face, T(m.ior))};
+}
+template <class T> rough_conductor_t<T> rough_metal_at(const material& m, const hit_t<T>& h) {
+  return {ggx_t<T>(alpha_at(m, h)), m.conductor};
 }
 template <class T>
 rgb microfacet_f_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, const vec3_t<T>& wi) {
   const onb_t<T> b(h.facing_normal());
   const vec3_t<T> lo = b.to_local(wo), li = b.to_local(wi);
   if (m.kind == material_kind::rough_conductor)
-    return rough_conductor_t<T>{ggx_t<T>(T(m.roughness)), m.conductor}.f(lo, li) * float(std::abs(li.z));
+    return rough_metal_at(m, h).f(lo, li) * float(std::abs(li.z));
   return rgb(float(rough_glass_at(m, h).f(lo, li) * std::abs(li.z)));
 }
 template <class T>
@@ -226,7 +241,7 @@ T microfacet_pdf(const material& m, const hit_t<T>& h, const vec3_t<T>& wo, cons
   const onb_t<T> b(h.facing_normal());
   const vec3_t<T> lo = b.to_local(wo), li = b.to_local(wi);
   if (m.kind == material_kind::rough_conductor)
-    return rough_conductor_t<T>{ggx_t<T>(T(m.roughness)), m.conductor}.pdf(lo, li);
+    return rough_metal_at(m, h).pdf(lo, li);
   return rough_glass_at(m, h).pdf(lo, li);
 }
 
@@ -269,7 +284,7 @@ std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const
       return scatter_t<T>{vec3_t<T>(sm->wi), rgb(sm->weight), T(sm->pdf), false};
     }
     if (m.kind == material_kind::lambertian) {  // cosine-weighted: f cos / pdf = albedo exactly
-      const lambert_brdf_t<T> f{vec3_t<T>(evaluate(m.albedo, h.p, n))};
+      const lambert_brdf_t<T> f{vec3_t<T>(evaluate(m.albedo, h.p, n, h.uv))};
       const auto sm = f.sample(-d, n, vec2_t<T>(u));
       if (!sm) return std::nullopt;  // grazing: d along the surface, or rounding on the horizon
       return scatter_t<T>{sm->wi, rgb(sm->weight), sm->pdf, false};
@@ -278,7 +293,7 @@ std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const
       const onb_t<T> b(n);
       const vec3_t<T> wo = b.to_local(-d);
       const auto sm = m.kind == material_kind::rough_conductor
-                          ? rough_conductor_t<T>{ggx_t<T>(T(m.roughness)), m.conductor}.sample(wo, vec2_t<T>(u))
+                          ? rough_metal_at(m, h).sample(wo, vec2_t<T>(u))
                           : rough_glass_at(m, h).sample(wo, vec2_t<T>(u), T(u_lobe));
       if (!sm) return std::nullopt;  // sent below the surface by a facet: absorbed
       return scatter_t<T>{b.to_world(sm->wi), sm->weight, sm->pdf, false};
@@ -295,7 +310,7 @@ std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const
       const vec3_t<T> ball = sample_unit_ball(vec3_t<T>(u0, u1, u2));
       const auto wi = fuzzy_mirror(d, n, T(m.fuzz), ball);
       if (!wi) return std::nullopt;  // pushed below the surface: absorbed
-      return scatter_t<T>{*wi, evaluate(m.albedo, h.p, n), T(0), true};
+      return scatter_t<T>{*wi, evaluate(m.albedo, h.p, n, h.uv), T(0), true};
     }
     // Glass: reflect with probability R (exact Fresnel), else refract; the weight is 1 either way.
     // The eta^2 change of radiance across the boundary is left out: it cancels for every path

@@ -60,7 +60,7 @@ template <class T> void check_media(const scene_t<T>& sc, const medium_options& 
     throw error("media: the global medium " + std::to_string(sc.global_medium) + " does not exist");
   for (std::size_t i = 0; i < sc.materials.size(); ++i)
     if (sc.materials[i].interior < -1 || sc.materials[i].interior >= n)
-      throw error("media: material " + std::to_string(i) + " names medium " + std::to_string(sc.materials[i].interior) +
+      throw error("media: " + sc.material_label(int(i)) + " names medium " + std::to_string(sc.materials[i].interior) +
                   ", which does not exist");
   if (o.estimator == media_estimator::march && !(o.step > 0 && std::isfinite(o.step)))
     throw error("media: the march step must be positive and finite, got " + std::to_string(o.step));

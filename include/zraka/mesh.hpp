@@ -14,12 +14,20 @@ namespace zraka {
 template <class T> struct mesh_t {
   std::vector<vec3_t<T>> positions;
   std::vector<vec3_t<T>> normals;  // one unit normal per position
+  std::vector<vec2_t<T>> texcoords;  // none, or one (u, v) per position: OBJ vt, a patch's (u, v)
   std::vector<std::array<std::uint32_t, 3>> triangles;
 
   std::size_t triangle_count() const { return triangles.size(); }
   triangle_t<T> triangle(std::size_t i) const {
     const auto& f = triangles[i];
     return {positions[f[0]], positions[f[1]], positions[f[2]]};
+  }
+  // The texture coordinates at barycentrics (u, v), interpolated like the point; the barycentrics
+  // themselves when the mesh has none.
+  vec2_t<T> texcoord(std::size_t i, T u, T v) const {
+    if (texcoords.size() != positions.size()) return {u, v};
+    const auto& f = triangles[i];
+    return (T(1) - u - v) * texcoords[f[0]] + u * texcoords[f[1]] + v * texcoords[f[2]];
   }
   // The shading normal at barycentrics (u, v): the vertex normals interpolated like the point
   // (P = (1-u-v) A + u B + v C) and renormalised. Where they cancel (opposite vertex normals),

@@ -36,11 +36,13 @@ inline std::string mitsuba_scene_json(const scene& sc, int width, int height, in
   if (sc.environment) throw error("--export: the environment light ('" + sc.environment->name() + "') is not exported to Mitsuba yet");
   for (std::size_t i = 0; i < sc.materials.size(); ++i) {
     const material& m = sc.materials[i];
-    if (is_custom(m)) throw error("--export: a custom BSDF ('" + m.bsdf->name() + "') cannot be exported");
+    if (is_custom(m)) throw error("--export: " + sc.material_label(int(i)) + " is a custom BSDF ('" + m.bsdf->name() + "'), which cannot be exported");
     if (is_microfacet(m))
-      throw error(std::string("--export: a ") + kind_name(m.kind) + " cannot be exported yet (tools/mitsuba_reference.py has no rough materials)");
+      throw error("--export: " + sc.material_label(int(i)) + " is a " + kind_name(m.kind) + ", which cannot be exported yet (tools/mitsuba_reference.py has no rough materials)");
+    if (m.albedo.type == texture::kind::image || m.albedo.type == texture::kind::noise)
+      throw error("--export: " + sc.material_label(int(i)) + " has " + describe(m.albedo) + ", which is not exported yet");
     if (!detail::mitsuba_kind(m.kind))
-      throw error("--export: material " + std::to_string(i) + " is of a kind the converter does not know");
+      throw error("--export: " + sc.material_label(int(i)) + " is of a kind the converter does not know");
   }
   std::ostringstream o;
   o.precision(17);

@@ -3,8 +3,8 @@
 // v, vn, vt; faces f v, v/vt, v//vn, v/vt/vn; negative indices count back from the last vertex
 // defined so far; polygons are fanned into triangles. vn are per-vertex normals referenced by
 // the faces; a vertex used with two different normals becomes two mesh vertices. Normals are kept
-// only if every face corner has one (otherwise the mesh is shaded flat). Texture coordinates are
-// checked but not used.
+// only if every face corner has one (otherwise the mesh is shaded flat); so are texture
+// coordinates (vt u [v [w]]: mesh.texcoords, for image textures; otherwise uv are barycentric).
 //
 //   const zraka::mesh m = zraka::load_obj("scenes/meshes/cube.obj");
 //
@@ -25,6 +25,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -54,6 +55,7 @@ class obj_reader {
   struct corner {
     std::uint32_t position;
     std::int64_t normal;  // -1: none
+    std::int64_t texcoord = -1;  // -1: none
   };
   std::string name_;
   int line_no_ = 0;
@@ -61,9 +63,9 @@ class obj_reader {
   std::size_t col_ = 0;       // where the next token starts its search (0-based)
   std::size_t tok_col_ = 0;   // column of the last token (0-based)
   std::vector<vec3> positions_, normals_;
-  std::uint64_t texcoords_ = 0;
+  std::vector<vec2> texcoords_;
   std::vector<corner> corners_;  // three per triangle
-  bool all_normals_ = true;
+  bool all_normals_ = true, all_texcoords_ = true;
 
   [[noreturn]] void fail(const std::string& what) const {
     throw error(name_ + ":" + std::to_string(line_no_) + ":" + std::to_string(tok_col_ + 1) + ": " + what);
@@ -123,10 +125,11 @@ class obj_reader {
       normals_.push_back(three_numbers("normal coordinate"));
       no_more("normal");
     } else if (key == "vt") {
-      count(texcoords_, "texture coordinates");
-      (void)number(token(), "texture coordinate");
-      no_more("texture coordinate", 2);
-      ++texcoords_;
+      count(texcoords_.size(), "texture coordinates");
+      const double u = number(token(), "texture coordinate");
+      const std::string_view tv = token();  // v is optional (1-D textures), and so is w
+      texcoords_.push_back({u, tv.empty() ? 0.0 : number(tv, "texture coordinate")});
+      if (!tv.empty()) no_more("texture coordinate", 1);
     } else if (key == "f") {
       face();
     } else if (key == "o" || key == "g" || key == "s" || key == "usemtl" || key == "mtllib") {
@@ -174,7 +177,7 @@ class obj_reader {
         const std::string_view rest = t.substr(s1 + 1);
         const std::size_t s2 = rest.find('/');
         const std::string_view vt = rest.substr(0, s2);
-        if (!vt.empty()) (void)index(vt, texcoords_, "texture coordinate");
+        if (!vt.empty()) c.texcoord = index(vt, texcoords_.size(), "texture coordinate");
         if (s2 != std::string_view::npos) {
           const std::string_view vn = rest.substr(s2 + 1);
           if (vn.empty() || vn.find('/') != std::string_view::npos)
@@ -186,6 +189,7 @@ class obj_reader {
       }
       tok_col_ = token_col;
       all_normals_ = all_normals_ && c.normal >= 0;
+      all_texcoords_ = all_texcoords_ && c.texcoord >= 0;
       if (n == 0) c0 = c;
       if (n >= 2) {  // fan: (first, previous, this)
         if (corners_.size() / 3 >= limits().triangles)
@@ -205,16 +209,18 @@ class obj_reader {
   }
 
   // [listing obj-vertex]
-  // A mesh vertex is a (position, normal) pair: the OBJ's separate index lists become one.
+  // A mesh vertex is a (position, normal, texture coordinate) triple: the OBJ's separate index
+  // lists become one. Normals (and texture coordinates) are kept only if every corner has one.
   mesh build() const {
     mesh m;
-    std::map<std::pair<std::uint32_t, std::int64_t>, std::uint32_t> vertex_of;
+    std::map<std::tuple<std::uint32_t, std::int64_t, std::int64_t>, std::uint32_t> vertex_of;
     auto vertex = [&](const corner& c) {
-      const std::int64_t n = all_normals_ ? c.normal : -1;
-      const auto [it, is_new] = vertex_of.try_emplace({c.position, n}, std::uint32_t(m.positions.size()));
+      const std::int64_t n = all_normals_ ? c.normal : -1, uv = all_texcoords_ ? c.texcoord : -1;
+      const auto [it, is_new] = vertex_of.try_emplace({c.position, n, uv}, std::uint32_t(m.positions.size()));
       if (is_new) {
         m.positions.push_back(positions_[c.position]);
         if (n >= 0) m.normals.push_back(normalize_or_zero(normals_[std::size_t(n)]));
+        if (uv >= 0) m.texcoords.push_back(texcoords_[std::size_t(uv)]);
       }
       return it->second;
     };

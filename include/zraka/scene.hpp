@@ -79,6 +79,7 @@ template <class T> struct scene_t {
   };
 
   std::vector<material> materials;
+  std::vector<std::string> material_names;  // by index, from the scene file; may be short or ""
   std::vector<object_t<sphere_t<T>>> spheres;
   std::vector<object_t<parallelogram_t<T>>> quads;
   std::vector<object_t<plane_t<T>>> planes;
@@ -106,6 +107,13 @@ template <class T> struct scene_t {
     return s;
   }
 
+  // "material 'gold'" as the scene file names it, else "material 3": for refusals and errors.
+  std::string material_label(int i) const {
+    if (i >= 0 && std::size_t(i) < material_names.size() && !material_names[std::size_t(i)].empty())
+      return "material '" + material_names[std::size_t(i)] + "'";
+    return "material " + std::to_string(i);
+  }
+
   int add_material(const material& m) {
     materials.push_back(m);
     return static_cast<int>(materials.size()) - 1;
@@ -118,6 +126,9 @@ template <class T> struct scene_t {
   object_ref add(const triangle_t<T>& t, int mat) { return push(triangles, t, mat, shape_kind::triangle); }
   object_ref add(mesh_t<T> m, int mat) {
     check_material(mat);
+    if (!m.texcoords.empty() && m.texcoords.size() != m.positions.size())
+      throw error("mesh: " + std::to_string(m.texcoords.size()) + " texture coordinates for " +
+                  std::to_string(m.positions.size()) + " positions");
     if (!m.normals.empty() && m.normals.size() != m.positions.size())
       throw error("mesh: " + std::to_string(m.normals.size()) + " normals for " +
                   std::to_string(m.positions.size()) + " vertices");

@@ -28,7 +28,7 @@ inline loaded_scene load_scene_argument(const std::string& arg) {
   }
   const named_scene* n = find_named_scene(arg);
   if (!n) throw error("unknown scene '" + arg + "' (" + named_scene_list() + ", or a .yaml file)");
-  if (n->build) return loaded_scene{n->build(), {}, {}};
+  if (n->build) return loaded_scene{n->build(), {}};
   return load_scene_file("scenes/" + std::string(n->name) + ".yaml");
 }
 

@@ -25,6 +25,7 @@
 #include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
+#include <zraka/texture_file.hpp>
 #include <zraka/input_file.hpp>
 #include <zraka/limits.hpp>
 #include <zraka/obj_file.hpp>
@@ -62,8 +63,7 @@ struct scene_file_defaults {
 
 struct loaded_scene {
   scene sc;
-  std::string resolved;                     // YAML: the scene with every default filled in
-  std::vector<std::string> material_names;  // by material index ("" for lights' own)
+  std::string resolved;  // YAML: the scene with every default filled in
 };
 
 namespace detail {
@@ -251,6 +251,14 @@ class scene_reader {
     if (!std::isfinite(x)) fail(n, field, "must be finite, got " + n.Scalar());
     if (std::abs(x) > max_coordinate) fail(n, field, "must be within +-1e18 (its square would overflow), got " + n.Scalar());
     return x;
+  }
+  bool boolean(const YAML::Node& n, const std::string& field) const {
+    if (n.IsScalar()) {
+      const std::string v = n.Scalar();
+      if (v == "true") return true;
+      if (v == "false") return false;
+    }
+    fail(n, field, "expected true or false, got " + scalar_text(n));
   }
   long long integer(const YAML::Node& n, const std::string& field, long long lo, long long hi) const {
     if (!n.IsScalar()) fail(n, field, "expected an integer, got " + scalar_text(n));
@@ -465,9 +473,15 @@ class scene_reader {
     r["focus_distance"] = num(c.focus_distance);
   }
 
+  // [listing scene-texture]
+  // albedo: a colour, {checker: {even, odd, scale}}, {image: {file, srgb, wrap}} or
+  // {noise: {low, high, frequency, octaves, marble}}
   texture albedo(const YAML::Node& n, const std::string& field) const {
     if (!n.IsMap()) return texture::solid(colour(n, field));
-    if (n.size() != 1 || !n["checker"]) fail(n, field, "expected a colour or {checker: {even, odd, scale}}");
+    if (n.size() == 1 && n["image"]) return image_texture(n["image"], field + ".image");
+    if (n.size() == 1 && n["noise"]) return noise_texture(n["noise"], field + ".noise");
+    if (n.size() != 1 || !n["checker"])
+      fail(n, field, "expected a colour, {checker: {...}}, {image: {file, ...}} or {noise: {...}}");
     const YAML::Node c = n["checker"];
     keys(c, field + ".checker", {"even", "odd", "scale"});
     texture t = texture::checker(texture{}.a, texture{}.b, texture{}.cell);
@@ -479,8 +493,62 @@ class scene_reader {
     }
     return t;
   }
+  texture image_texture(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsMap()) fail(n, field, "expected {file: ..., srgb: true, wrap: repeat}, got " + scalar_text(n));
+    keys(n, field, {"file", "srgb", "wrap"});
+    const YAML::Node f = required(n, "file", field);
+    const std::filesystem::path file = find_file(f, field + ".file");
+    const bool srgb = n["srgb"] ? boolean(n["srgb"], field + ".srgb") : true;
+    const std::string wrap = n["wrap"] ? text(n["wrap"], field + ".wrap") : "repeat";
+    if (wrap != "repeat" && wrap != "clamp") fail(n["wrap"], field + ".wrap", "must be repeat or clamp, got '" + wrap + "'");
+    try {
+      texture t = texture::image_map(std::make_shared<const image>(load_texture_image(file, srgb)), wrap == "repeat",
+                                     f.Scalar());
+      t.srgb = srgb;
+      return t;
+    } catch (const error& e) {  // name the file as the scene does, not by its full path
+      std::string msg = e.what();
+      if (msg.rfind(file.string(), 0) == 0) msg = f.Scalar() + msg.substr(file.string().size());
+      fail(f, field + ".file", msg);
+    }
+  }
+  texture noise_texture(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsMap()) fail(n, field, "expected {low, high, frequency, octaves, marble}, got " + scalar_text(n));
+    keys(n, field, {"low", "high", "frequency", "octaves", "marble"});
+    texture t = texture::noise(rgb(0.1f), rgb(0.9f), 4.0, 1, false);
+    if (n["low"]) t.a = colour(n["low"], field + ".low");
+    if (n["high"]) t.b = colour(n["high"], field + ".high");
+    if (n["frequency"]) {
+      t.frequency = number(n["frequency"], field + ".frequency");
+      if (!(t.frequency > 0 && t.frequency <= 1e6)) fail(n["frequency"], field + ".frequency", "must be in (0, 1e6]");
+    }
+    if (n["octaves"]) t.octaves = int(integer(n["octaves"], field + ".octaves", 1, 16));
+    if (n["marble"]) t.marble = boolean(n["marble"], field + ".marble");
+    return t;
+  }
+  // [end]
   static YAML::Node albedo_node(const texture& t) {
     if (t.type == texture::kind::solid) return flow(t.a);
+    if (t.type == texture::kind::image) {
+      YAML::Node n, c;
+      c["file"] = t.source;
+      c["srgb"] = t.srgb;
+      c["wrap"] = t.repeat ? "repeat" : "clamp";
+      n["image"] = c;
+      n.SetStyle(YAML::EmitterStyle::Flow);
+      return n;
+    }
+    if (t.type == texture::kind::noise) {
+      YAML::Node n, c;
+      c["low"] = flow(t.a);
+      c["high"] = flow(t.b);
+      c["frequency"] = num(t.frequency);
+      c["octaves"] = t.octaves;
+      c["marble"] = t.marble;
+      n["noise"] = c;
+      n.SetStyle(YAML::EmitterStyle::Flow);
+      return n;
+    }
     YAML::Node n, c;
     c["even"] = flow(t.a);
     c["odd"] = flow(t.b);
@@ -492,7 +560,7 @@ class scene_reader {
 
   void materials(const YAML::Node& n) {
     out_.sc.add_material(material{});  // "default"
-    out_.material_names.push_back("default");
+    out_.sc.material_names.push_back("default");
     material_index_["default"] = 0;
     if (n) {
       if (!n.IsMap()) fail(n, "materials", "expected a map of name: {type: ..., ...}, got " + scalar_text(n));
@@ -500,17 +568,17 @@ class scene_reader {
       for (const auto& kv : n) {
         const std::string name = kv.first.Scalar();
         const int index = material_index_.count(name) ? material_index_[name] : out_.sc.add_material(material{});
-        if (!material_index_.count(name)) out_.material_names.push_back(name);
+        if (!material_index_.count(name)) out_.sc.material_names.push_back(name);
         material_index_[name] = index;
         registered_resolved_.erase(index);
         out_.sc.materials[std::size_t(index)] = one_material(kv.second, "materials." + name, index);
       }
     }
-    for (std::size_t i = 0; i < out_.material_names.size(); ++i) {
+    for (std::size_t i = 0; i < out_.sc.material_names.size(); ++i) {
       const material& m = out_.sc.materials[i];
       YAML::Node r;
       if (const auto it = registered_resolved_.find(int(i)); it != registered_resolved_.end()) {
-        resolved_["materials"][out_.material_names[i]] = it->second;
+        resolved_["materials"][out_.sc.material_names[i]] = it->second;
         continue;
       }
       switch (m.kind) {
@@ -540,7 +608,7 @@ class scene_reader {
           break;
         case material_kind::rough_conductor:
           r["type"] = "rough_conductor";
-          r["roughness"] = num(m.roughness);
+          r["roughness"] = m.roughness_map ? albedo_node(*m.roughness_map) : num(m.roughness);
           if (m.conductor.schlick) {
             r["f0"] = flow(m.conductor.f0);
           } else {  // a preset resolves to its numbers
@@ -550,12 +618,12 @@ class scene_reader {
           break;
         case material_kind::rough_dielectric:
           r["type"] = "rough_dielectric";
-          r["roughness"] = num(m.roughness);
+          r["roughness"] = m.roughness_map ? albedo_node(*m.roughness_map) : num(m.roughness);
           r["ior"] = num(m.ior);
           break;
       }
       r.SetStyle(YAML::EmitterStyle::Flow);
-      resolved_["materials"][out_.material_names[i]] = r;
+      resolved_["materials"][out_.sc.material_names[i]] = r;
     }
   }
   // A map whose keys are names (materials): only duplicates are errors.
@@ -613,7 +681,7 @@ class scene_reader {
       // channel), or f0 (the colour at normal incidence, Schlick); none: silver.
       keys(n, path, {"type", "roughness", "metal", "eta", "k", "f0"});
       m.kind = material_kind::rough_conductor;
-      m.roughness = roughness(n, path);
+      roughness(n, path, m);
       const int given = (n["metal"] ? 1 : 0) + (n["eta"] || n["k"] ? 1 : 0) + (n["f0"] ? 1 : 0);
       if (given > 1) fail(n, path, "a rough_conductor takes one of: metal, eta and k, f0");
       if (!given) {
@@ -637,7 +705,7 @@ class scene_reader {
     } else if (type == "rough_dielectric") {
       keys(n, path, {"type", "roughness", "ior"});
       m.kind = material_kind::rough_dielectric;
-      m.roughness = roughness(n, path);
+      roughness(n, path, m);
       if (n["ior"]) {
         m.ior = number(n["ior"], path + ".ior");
         if (!(m.ior > 0) || m.ior == 1)
@@ -649,13 +717,25 @@ class scene_reader {
     return m;
   }
 
-  // The GGX alpha of a rough material (microfacet.hpp: as Mitsuba's alpha, not squared).
-  double roughness(const YAML::Node& n, const std::string& path) const {
-    if (!n["roughness"]) return material{}.roughness;
-    const double r = number(n["roughness"], path + ".roughness");
-    if (!(r > 0 && r <= 1))
-      fail(n["roughness"], path + ".roughness", "must be in (0, 1] (the GGX alpha), got " + n["roughness"].Scalar());
-    return r;
+  // The GGX alpha of a rough material (microfacet.hpp: as Mitsuba's alpha, not squared): a
+  // number, or a texture as for albedo whose channels' mean is alpha (material.hpp, alpha_at).
+  void roughness(const YAML::Node& n, const std::string& path, material& m) const {
+    if (!n["roughness"]) return;
+    const YAML::Node r = n["roughness"];
+    const std::string field = path + ".roughness";
+    if (r.IsMap()) {
+      const texture t = albedo(r, field);
+      // An image's texels are in [0, 1] already; checker and noise colours must be alphas too.
+      if (t.type != texture::kind::image)
+        for (const rgb& c : {t.a, t.b})
+          if (!(c.x > 0 && c.y > 0 && c.z > 0) || max_component(c) > 1)
+            fail(r, field, "the texture's values are GGX alphas and must be in (0, 1]");
+      m.roughness_map = t;
+      return;
+    }
+    m.roughness = number(r, field);
+    if (!(m.roughness > 0 && m.roughness <= 1))
+      fail(r, field, "must be in (0, 1] (the GGX alpha), got " + r.Scalar());
   }
 
   void lights(const YAML::Node& n) {
@@ -685,7 +765,7 @@ class scene_reader {
         }
         if (l["radiance"]) m.radiance = colour(l["radiance"], path + ".radiance");
         const int mat = out_.sc.add_material(m);
-        out_.material_names.push_back("");
+        out_.sc.material_names.push_back("");
         if (type == "quad") {
           const quad q = quad_of(l, path);
           out_.sc.add(q, mat);

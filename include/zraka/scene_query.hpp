@@ -57,6 +57,7 @@ bool nearest_hit(const scene_t<T>& sc, const ray_t<T>& r, scene_hit_t<T>& out, T
       const vec3_t<T> n = m.shading_normal(out.triangle, out.h.uv.x, out.h.uv.y);
       out.shading_normal = glm::dot(n, out.h.normal) < T(0) ? -n : n;  // on the geometric side
     }
+    out.h.uv = m.texcoord(out.triangle, out.h.uv.x, out.h.uv.y);  // barycentrics: used above, now texture space
   }
   return true;
 }

@@ -39,6 +39,7 @@ template <class T> void tessellate_patch(const bezier_patch_t<T>& patch, int div
       const T u = T(i) / T(divs), v = T(j) / T(divs);  // exact 0 and 1 on the edges
       out.positions.push_back(to_world.point(evaluate(patch, u, v)));
       out.normals.push_back(to_world.normal(patch_normal(patch, u, v)));
+      out.texcoords.push_back({u, v});  // the patch's own parameters: a texture fits each patch
     }
   auto id = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * n + i); };
   for (int j = 0; j < divs; ++j)

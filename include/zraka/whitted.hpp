@@ -43,7 +43,7 @@ struct whitted_options {
 
 // The diffuse colour of a surface: the albedo (a texture) or phong's kd.
 template <class T> rgb diffuse_colour(const material& m, const hit_t<T>& h) {
-  return m.kind == material_kind::phong ? m.kd : evaluate(m.albedo, h.p, h.facing_normal());
+  return m.kind == material_kind::phong ? m.kd : evaluate(m.albedo, h.p, h.facing_normal(), h.uv);
 }
 
 // [listing local-shade]
@@ -160,12 +160,12 @@ template <class T> void check_whitted_scene(const scene_t<T>& sc) {
   for_each_object(sc, [&](object_ref o) {
     const material& m = sc.material_of(o);
     if (is_custom(m))
-      throw error("whitted: material " + std::to_string(sc.material_index(o)) + " is a custom BSDF ('" +
+      throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a custom BSDF ('" +
                   m.bsdf->name() + "'), which the Whitted ray tracer cannot shade; render it with pathtrace");
     // A glossy lobe is neither a mirror (one ray) nor a local model (a highlight per light):
     // it needs the integral over directions that path tracing estimates.
     if (is_microfacet(m))
-      throw error("whitted: material " + std::to_string(sc.material_index(o)) + " is a " + kind_name(m.kind) +
+      throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a " + kind_name(m.kind) +
                   ", a rough microfacet surface, which the Whitted ray tracer cannot shade; render it with pathtrace");
   });
 }

@@ -1,0 +1,64 @@
+#pragma once
+// Reading an image texture (texture.hpp) from a file, by extension:
+//   .png            8-bit, decoded from sRGB to linear (srgb = true, the usual case for colour
+//                   images) or read as linear values / 255 (srgb = false, e.g. data maps);
+//   .hdr .exr .pfm  linear floats (environment_file.hpp, image_io.hpp).
+// An albedo above 1 would create energy, so every texel must lie in [0, 1]; every error names
+// the file (and the texel). The bytes come through read_input_file (a regular file within the
+// size limit), and the image size is checked before decoding.
+#include <zraka/environment_file.hpp>
+#include <zraka/error.hpp>
+#include <zraka/image.hpp>
+#include <zraka/image_io.hpp>
+#include <zraka/input_file.hpp>
+#include <zraka/stb_image.hpp>
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace zraka {
+
+// A PNG's bytes as linear RGB (alpha, if any, is dropped), row 0 at the top.
+inline image parse_png_texture(std::string_view bytes, const std::string& name, bool srgb) {
+  const auto* in = reinterpret_cast<const stbi_uc*>(bytes.data());
+  if (bytes.size() > std::size_t(1) << 31) throw error(name + ": too large for the PNG reader");
+  const int len = int(bytes.size());
+  int w = 0, h = 0, channels = 0;
+  auto why = [] { const char* r = stbi_failure_reason(); return std::string(r ? r : "corrupt PNG"); };
+  if (!stbi_info_from_memory(in, len, &w, &h, &channels)) throw error(name + ": not a PNG image: " + why());
+  try {
+    image::check_size(w, h);
+  } catch (const error& e) {
+    throw error(name + ": " + e.what());
+  }
+  stbi_uc* data = stbi_load_from_memory(in, len, &w, &h, &channels, 3);
+  if (!data) throw error(name + ": cannot decode PNG: " + why());
+  image img(w, h);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const float s = float(data[3 * i + std::size_t(c)]) / 255.0f;
+      img.pixels[i][c] = srgb ? srgb_to_linear(s) : s;
+    }
+  stbi_image_free(data);
+  return img;
+}
+
+// [listing load-texture]
+inline image load_texture_image(const std::filesystem::path& path, bool srgb = true) {
+  const std::string ext = path.extension().string();
+  image img;
+  if (ext == ".png") img = parse_png_texture(read_input_file(path), path.string(), srgb);
+  else if (ext == ".hdr" || ext == ".exr" || ext == ".pfm") img = read_hdr_image(path);
+  else throw error(path.string() + ": unknown texture image type '" + ext + "' (use .png, .hdr, .exr or .pfm)");
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        if (const float v = img.at(x, y)[c]; !(v >= 0 && v <= 1))
+          throw error(path.string() + ": texel (" + std::to_string(x) + ", " + std::to_string(y) +
+                      ") has " + std::to_string(v) + ", but an albedo must be in [0, 1]");
+  return img;
+}
+// [end]
+
+}  // namespace zraka
