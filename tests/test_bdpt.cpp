@@ -11,16 +11,17 @@
 
 #include <doctest/doctest.h>
 
+#include "region_stats.hpp"
+
 #include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
 
 using namespace zraka;
+using namespace zraka_tests;
 
 namespace {
-
-constexpr int R = 4;  // R x R regions
 
 scene small(scene sc, int w, int h) {
   sc.settings.width = w;
@@ -34,44 +35,6 @@ scene point_lit_box() {
     if (m.kind == material_kind::emitter) m.radiance = rgb(0);  // the quad stays, dark
   sc.add(point_light_t<double>{{0.1, 1.7, 0.2}, rgb(2.0f)});
   return sc;
-}
-
-// Per region and channel, the mean over the batches and its standard error.
-struct region_stats {
-  std::vector<estimator_t<double>> v;
-};
-std::vector<double> region_means(const image& img) {
-  std::vector<double> m(R * R * 3, 0.0);
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x) {
-      const int r = (y * R / img.height) * R + x * R / img.width;
-      for (int c = 0; c < 3; ++c) m[std::size_t(r * 3 + c)] += img.at(x, y)[c];
-    }
-  for (double& v : m) v /= double(img.width * img.height) / (R * R);
-  return m;
-}
-region_stats batches(int n, const std::function<image(std::uint64_t)>& render_one) {
-  region_stats s;
-  s.v.resize(R * R * 3);
-  for (int b = 0; b < n; ++b) {
-    const auto m = region_means(render_one(std::uint64_t(100 + 7 * b)));
-    for (std::size_t i = 0; i < m.size(); ++i) s.v[i].add(m[i]);
-  }
-  return s;
-}
-// How many region channels differ by more than k combined standard errors.
-int disagreements(const region_stats& a, const region_stats& b, double k, std::string& report) {
-  int bad = 0;
-  for (std::size_t i = 0; i < a.v.size(); ++i) {
-    const double d = a.v[i].mean() - b.v[i].mean();
-    const double se = std::hypot(a.v[i].standard_error(), b.v[i].standard_error());
-    if (std::abs(d) > k * se + 1e-6) {
-      ++bad;
-      report += " region " + std::to_string(i / 3) + " channel " + std::to_string(i % 3) + ": " +
-                std::to_string(a.v[i].mean()) + " vs " + std::to_string(b.v[i].mean()) + " (se " + std::to_string(se) + ");";
-    }
-  }
-  return bad;
 }
 
 image render_mis(const scene& sc, int spp, std::uint64_t seed, int max_depth) {

@@ -71,6 +71,9 @@ cp 6.2-caustic-box.png 6.2-caustic-box-strategies.png 6.2-ajar-door.png 6.2-ajar
 # --- 6.3
 "$bin/photons" --width 96 --height 96 --spp 64 --photons 10000 --ref-spp 64 --caustic-ref-spp 512 \
   --out 6.3-photons.png >/dev/null && cp 6.3-photons.png "$fig/"
+# --- 6.4
+"$bin/metropolis" --width 160 --height 120 --spp 64 --ref-spp 1024 --out 6.4-metropolis.png >/dev/null \
+  && cp 6.4-metropolis.png "$fig/"
 # --- 6.1 (the long delta-tracking references are the figures)
 "$bin/media" --width 128 --height 128 --spp 1 --ref-spp 384 --steps 0.5 --out 6.1-fog.png >/dev/null && cp 6.1-fog-reference.png "$fig/6.1-fog.png"
 "$bin/media" --scene milk-glass --width 128 --height 128 --spp 1 --ref-spp 192 --steps 0.5 --out 6.1-milk.png >/dev/null && cp 6.1-milk-reference.png "$fig/6.1-milk.png"

@@ -4,8 +4,8 @@
 // scene with BDPT and with the path tracer of chapter 2.3 (`mis`), at 1, 2, 4, ... samples per
 // pixel, and prints each one's error against run time against a reference: a long `mis` render
 // (--ref-spp samples in two halves with seeds of their own, whose difference measures the
-// reference's own noise, taken out of the errors), kept in two PFM files next to --out and read
-// back on the next run with the same scene, size, depth and reference samples. From the largest run, MSE x
+// reference's own noise, taken out of the errors; reference.hpp), kept in two PFM files next to --out
+// and read back on the next run with the same scene, size, depth and reference samples. From the largest run, MSE x
 // seconds is each method's cost, and the RMSE at equal time follows.
 // --strategies N also writes the weighted image of every strategy of path length 1..N as a grid
 // (row k = path length, column s = light vertices), so a student sees which strategy carries
@@ -18,6 +18,7 @@
 #include <zraka/input_file.hpp>
 #include <zraka/path.hpp>
 #include <zraka/program_options.hpp>
+#include <zraka/reference.hpp>
 #include <zraka/render.hpp>
 #include <zraka/scene_argument.hpp>
 #include <zraka/scene_query.hpp>
@@ -31,35 +32,6 @@
 using namespace zraka;
 
 namespace {
-
-// [listing mis-render]
-// The path tracer of chapter 2.3, its camera rays jittered over the pixel as BDPT's are.
-image render_mis(const scene& sc, int spp, std::uint64_t seed, const path_options& po, const render_options& ro,
-                 render_stats& st) {
-  const path_tracer pt(sc, po);
-  const auto cam = sc.prepared_camera();
-  const int W = sc.settings.width, H = sc.settings.height;
-  image img(W, H);
-  st = render(img, spp, seed, [&](sample_context& c) {
-    const vec2 u = c.random.uniform2();
-    return pt(cam.generate((c.x + u.x) / W, (c.y + u.y) / H), c.random, c.rays);
-  }, ro);
-  return img;
-}
-// [end]
-
-// 8 hex digits of the FNV-1a hash of the scene file's bytes ("c++" for a scene built in C++).
-std::string scene_file_hash(const std::string& arg) {
-  std::filesystem::path p;
-  if (is_scene_path(arg)) p = std::filesystem::exists(arg) ? std::filesystem::path(arg) : resource_root() / arg;
-  else if (const named_scene* n = find_named_scene(arg); n && !n->build) p = resource_root() / "scenes" / (arg + ".yaml");
-  else return "c++";
-  std::uint32_t h = 2166136261u;
-  for (const char c : read_input_file(p)) h = (h ^ std::uint8_t(c)) * 16777619u;
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "%08x", h);
-  return buf;
-}
 
 // Row k - 1 holds path length k; column s the strategy (s, k + 1 - s); gaps grey.
 image strategy_grid(const std::vector<image>& strategies, int K, int W, int H) {
@@ -90,7 +62,6 @@ int main(int argc, char** argv) {
   if (const auto done = cli.parse(argc, argv)) return *done;
 
   return guarded([&] {
-    if (ref_spp < 2 || ref_spp > 65536 || ref_spp % 2) throw error("--ref-spp must be even, in 2..65536, got " + std::to_string(ref_spp));
     if (cli.spp & (cli.spp - 1)) throw error("--spp must be a power of 2, got " + std::to_string(cli.spp));
     if (heuristic != "power" && heuristic != "balance")
       throw error("--heuristic must be power or balance, got '" + heuristic + "'");
@@ -112,47 +83,19 @@ int main(int argc, char** argv) {
                 describe_built(sc).c_str(), light_set(sc).describe().c_str());
     std::uint64_t bad = 0;
 
-    // The reference: two halves of ref_spp / 2 samples with seeds of their own, read back when
-    // an earlier run made them for the same scene and settings. Their difference measures the
-    // reference's own noise: E|A - B|^2 = 4 MSE((A + B) / 2), which the RMSEs below subtract.
-    // The file names carry a hash of the scene file, so an edited scene is rendered again.
-    const std::string scene_tag = std::filesystem::path(cli.scene).stem().string() + "-" + scene_file_hash(cli.scene);
-    const std::string tag = "-reference-" + scene_tag + "-" + std::to_string(W) + "x" + std::to_string(H) + "-d" +
-                            std::to_string(cli.depth) + "-" + std::to_string(ref_spp) + "spp";
-    image half[2];
-    bool cached = true;
-    for (int i = 0; i < 2; ++i) {
-      const std::string name = cli.sibling(tag + (i ? "-b" : "-a"), ".pfm");
-      std::error_code ec;
-      if (std::filesystem::exists(name, ec)) {
-        half[i] = read_pfm(name);
-        check_same_size(image(W, H), half[i]);
-        continue;
-      }
-      cached = false;
-      render_stats rs;
-      half[i] = render_mis(sc, std::max(1, ref_spp / 2), cli.seed + 1000 + std::uint64_t(i), po, ro, rs);
-      bad += rs.nonfinite;
-      write_image(half[i], name);
-      std::printf("reference half %c: mis, %d spp, seed %llu, %.2f s, %llu NaN/inf samples\n", i ? 'b' : 'a',
-                  std::max(1, ref_spp / 2), static_cast<unsigned long long>(cli.seed + 1000 + std::uint64_t(i)),
-                  rs.seconds, static_cast<unsigned long long>(rs.nonfinite));
-    }
-    image reference(W, H);
-    for (std::size_t i = 0; i < reference.pixels.size(); ++i) reference.pixels[i] = (half[0].pixels[i] + half[1].pixels[i]) * 0.5f;
-    const double ref_mse = rmse(half[0], half[1]) * rmse(half[0], half[1]) / 4;
-    const double ref_rel = relmse(half[0], half[1]) / 4;
+    // The reference (reference.hpp): two halves of ref_spp / 2 samples with seeds of their own,
+    // read back when an earlier run made them for the same scene file and settings.
+    const std::string tag = reference_tag(cli.scene, W, H, cli.depth, ref_spp);
+    const mis_reference ref = make_mis_reference(
+        sc, ref_spp, cli.seed, po, ro, [&](const std::string& half) { return cli.sibling(tag + half, ".pfm"); }, bad);
+    const image& reference = ref.img;
     std::printf("reference: mis, %d spp in two halves, %s %s; its own RMSE %.5f, relMSE %.5f (subtracted below)\n",
-                ref_spp, cached ? "read from" : "cached in", cli.sibling(tag + "-{a,b}", ".pfm").c_str(),
-                std::sqrt(ref_mse), ref_rel);
-    // The errors against the truth, estimated: the reference's noise taken out of the squared
-    // error (for relMSE approximately: its weights use the reference). relMSE divides each
-    // pixel's squared error by ref^2 + 0.01, so fireflies in dark regions count and the noise at
-    // the edges of a directly seen light (the pixel's jitter, the same for both) counts less.
-    auto error_of = [&](const image& img) -> std::vector<double> {
-      const double e = rmse(img, reference);
-      return {std::sqrt(std::max(0.0, e * e - ref_mse)), std::max(0.0, relmse(img, reference) - ref_rel)};
-    };
+                ref_spp, ref.cached ? "read from" : "cached in", ref.files.c_str(), std::sqrt(ref.mse_noise),
+                ref.relmse_noise);
+    // relMSE divides each pixel's squared error by ref^2 + 0.01, so fireflies in dark regions
+    // count and the noise at the edges of a directly seen light (the pixel's jitter, the same
+    // for both) counts less.
+    auto error_of = [&](const image& img) { return ref.errors_of(img); };
 
     // [listing error-against-time]
     convergence_log log_b("bdpt on " + cli.scene, {"rmse", "relmse"}, "relmse", "spp");
@@ -198,14 +141,7 @@ int main(int argc, char** argv) {
       std::printf("\nequal time: an error is below the reference's own noise; use a larger --ref-spp\n");
 
     // Figure: bdpt | mis | reference at the largest spp.
-    const int gap = 2;
-    image fig(3 * W + 2 * gap, H, rgb(1));
-    for (int y = 0; y < H; ++y)
-      for (int x = 0; x < W; ++x) {
-        fig.at(x, y) = last_b.at(x, y);
-        fig.at(W + gap + x, y) = last_m.at(x, y);
-        fig.at(2 * (W + gap) + x, y) = reference.at(x, y);
-      }
+    const image fig = side_by_side({last_b, last_m, reference});
     write_image(fig, cli.out);
     log_b.write_csv(cli.sibling("-bdpt", ".csv"));
     log_m.write_csv(cli.sibling("-mis", ".csv"));

@@ -102,15 +102,6 @@ image reference_of(const scene& sc, int spp, std::uint64_t seed, const render_op
   return ref;
 }
 
-image side_by_side(const std::vector<image>& tiles, int gap = 2) {
-  const int w = tiles.at(0).width, h = tiles[0].height;
-  image out(int(tiles.size()) * w + (int(tiles.size()) - 1) * gap, h, rgb(1));
-  for (std::size_t i = 0; i < tiles.size(); ++i)
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) out.at(int(i) * (w + gap) + x, y) = tiles[i].at(x, y);
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {

@@ -8,7 +8,7 @@
 #include <zraka/environment.hpp>
 #include <zraka/image_io.hpp>
 #include <zraka/input_file.hpp>
-#include <zraka/stb_image.hpp>
+#include <zraka/stb_decode.hpp>
 
 #include <filesystem>
 #include <string>
@@ -17,24 +17,7 @@ namespace zraka {
 
 // A Radiance .hdr file as linear RGB, row 0 at the top.
 inline image parse_radiance_hdr(std::string_view bytes, const std::string& name) {
-  const auto* in = reinterpret_cast<const stbi_uc*>(bytes.data());
-  if (bytes.size() > std::size_t(1) << 31) throw error(name + ": too large for the HDR reader");
-  const int len = int(bytes.size());
-  if (!stbi_is_hdr_from_memory(in, len)) throw error(name + ": not a Radiance HDR file (no #?RADIANCE or #?RGBE header)");
-  int w = 0, h = 0, channels = 0;
-  auto why = [] { const char* r = stbi_failure_reason(); return std::string(r ? r : "corrupt HDR"); };
-  if (!stbi_info_from_memory(in, len, &w, &h, &channels)) throw error(name + ": malformed HDR header: " + why());
-  try {
-    image::check_size(w, h);
-  } catch (const error& e) {
-    throw error(name + ": " + e.what());
-  }
-  float* data = stbi_loadf_from_memory(in, len, &w, &h, &channels, 3);
-  if (!data) throw error(name + ": cannot decode HDR: " + why());
-  image img(w, h);
-  for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = rgb(data[3 * i], data[3 * i + 1], data[3 * i + 2]);
-  stbi_image_free(data);
-  return img;
+  return detail::decode_with_stb(bytes, name, detail::stb_format::hdr);
 }
 
 inline image read_hdr_image(const std::filesystem::path& path) {

@@ -41,6 +41,18 @@ struct image {
   ZRAKA_COMPILED_FN static void check_size(long long w, long long h);
 };
 
+// Images of one size in a row, `gap` white pixels apart (the figures of part 6).
+inline image side_by_side(const std::vector<image>& tiles, int gap = 2) {
+  const int w = tiles.at(0).width, h = tiles[0].height;
+  image out(int(tiles.size()) * w + (int(tiles.size()) - 1) * gap, h, rgb(1));
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    if (tiles[i].width != w || tiles[i].height != h) throw error("side_by_side: the images differ in size");
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) out.at(int(i) * (w + gap) + x, y) = tiles[i].at(x, y);
+  }
+  return out;
+}
+
 // Compiled into zraka::compiled (compiled.hpp) unless header-only.
 #if ZRAKA_COMPILED_DEFINITIONS
 ZRAKA_COMPILED_FN void image::check_size(long long w, long long h) {

@@ -57,6 +57,22 @@ inline std::uint8_t to_byte(float linear) {
 }
 
 namespace detail {
+// What every image reader checks, with the file's name in front of the message: the size the
+// header states, before any pixel is decoded, and the pixels after (the first NaN/inf is named).
+inline void check_size_of(const std::string& name, long long w, long long h) {
+  try {
+    image::check_size(w, h);
+  } catch (const error& e) {
+    throw error(name + ": " + e.what());
+  }
+}
+inline void refuse_nonfinite(const image& img, const std::string& name) {
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (!is_finite(img.at(x, y)))
+        throw error(name + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is NaN or infinite");
+}
+
 inline std::size_t encode_8bit(const image& img, std::string& rgb8) {
   rgb8.resize(img.pixels.size() * 3);
   std::size_t bad = 0;
@@ -156,11 +172,7 @@ inline image parse_exr(std::string_view bytes, const std::string& name) {
   const long long w = 1LL + header.data_window.max_x - header.data_window.min_x;
   const long long h = 1LL + header.data_window.max_y - header.data_window.min_y;
   FreeEXRHeader(&header);
-  try {
-    image::check_size(w, h);
-  } catch (const error& e) {
-    throw error(name + ": " + e.what());
-  }
+  detail::check_size_of(name, w, h);
   float* rgba = nullptr;
   int width = 0, height = 0;
   if (const int rc = LoadEXRFromMemory(&rgba, &width, &height, mem, bytes.size(), &err); rc != TINYEXR_SUCCESS) {
@@ -174,10 +186,7 @@ inline image parse_exr(std::string_view bytes, const std::string& name) {
   image img(width, height);
   for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = rgb(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]);
   std::free(rgba);
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x)
-      if (!is_finite(img.at(x, y)))
-        throw error(name + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is NaN or infinite");
+  detail::refuse_nonfinite(img, name);
   return img;
 }
 inline image read_exr(const std::filesystem::path& path) {
@@ -258,11 +267,7 @@ ZRAKA_COMPILED_FN image parse_pfm(std::string_view bytes, const std::string& nam
   if (ec != std::errc() || end != st.data() + st.size() || !std::isfinite(scale) || scale == 0)
     throw error(name + ": the scale '" + std::string(st) + "' is not a finite non-zero number");
   if (scale > 0) throw error(name + ": a big-endian PFM (positive scale); only little-endian is read");
-  try {
-    image::check_size(w, h);
-  } catch (const error& e) {
-    throw error(name + ": " + e.what());
-  }
+  detail::check_size_of(name, w, h);
   if (pos >= bytes.size() || !std::isspace(static_cast<unsigned char>(bytes[pos])))
     throw error(name + ": file ends early (truncated PFM)");
   ++pos;  // the single whitespace after the scale
@@ -273,10 +278,7 @@ ZRAKA_COMPILED_FN image parse_pfm(std::string_view bytes, const std::string& nam
   image img(static_cast<int>(w), static_cast<int>(h));
   for (long long y = h - 1; y >= 0; --y, pos += row)
     std::memcpy(&img.at(0, int(y)), bytes.data() + pos, row);
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x)
-      if (!is_finite(img.at(x, y)))
-        throw error(name + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is NaN or infinite");
+  detail::refuse_nonfinite(img, name);
   return img;
 }
 ZRAKA_COMPILED_FN image read_pfm(const std::filesystem::path& path) {

@@ -35,6 +35,17 @@ constexpr std::uint32_t seed_word(std::uint64_t seed) {
   return hash_combine(pcg_hash(std::uint32_t(seed)), std::uint32_t(seed >> 32));
 }
 
+// Where the numbers of a stream may come from instead of the hash: chapter 6.4's primary
+// sample space (pss.hpp), whose Markov chain keeps and mutates every number a path drew, so
+// the unchanged path tracer follows the chain. Number `dimension` of the stream is asked for.
+class number_source {
+ public:
+  virtual std::uint32_t number(std::uint32_t dimension) = 0;
+
+ protected:
+  ~number_source() = default;
+};
+
 class rng {
  public:
   // A stream for (seed, pixel, sample); `dimension` counts the numbers drawn from it so far.
@@ -46,6 +57,7 @@ class rng {
   // [listing rng-next]
   // Number `dimension` of the stream: a hash of (key, dimension), no state but the counter.
   constexpr std::uint32_t next_u32() {
+    if (source_) return source_->number(dimension_++);  // 6.4 only; a well-predicted branch elsewhere
     return pcg_hash(key_pixel_ ^ hash_combine(key_sample_, dimension_++));
   }
   // [end]
@@ -71,10 +83,17 @@ class rng {
 
   std::uint32_t dimension() const { return dimension_; }
   void skip_to(std::uint32_t dimension) { dimension_ = dimension; }
+  // A stream whose numbers come from `source` (not owned), from dimension 0.
+  static rng from(number_source& source) {
+    rng g(0);
+    g.source_ = &source;
+    return g;
+  }
 
  private:
   std::uint32_t key_pixel_, key_sample_;
   std::uint32_t dimension_ = 0;
+  number_source* source_ = nullptr;
 };
 
 }  // namespace zraka

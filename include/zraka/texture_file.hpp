@@ -11,7 +11,7 @@
 #include <zraka/image.hpp>
 #include <zraka/image_io.hpp>
 #include <zraka/input_file.hpp>
-#include <zraka/stb_image.hpp>
+#include <zraka/stb_decode.hpp>
 
 #include <filesystem>
 #include <string>
@@ -21,26 +21,10 @@ namespace zraka {
 
 // A PNG's bytes as linear RGB (alpha, if any, is dropped), row 0 at the top.
 inline image parse_png_texture(std::string_view bytes, const std::string& name, bool srgb) {
-  const auto* in = reinterpret_cast<const stbi_uc*>(bytes.data());
-  if (bytes.size() > std::size_t(1) << 31) throw error(name + ": too large for the PNG reader");
-  const int len = int(bytes.size());
-  int w = 0, h = 0, channels = 0;
-  auto why = [] { const char* r = stbi_failure_reason(); return std::string(r ? r : "corrupt PNG"); };
-  if (!stbi_info_from_memory(in, len, &w, &h, &channels)) throw error(name + ": not a PNG image: " + why());
-  try {
-    image::check_size(w, h);
-  } catch (const error& e) {
-    throw error(name + ": " + e.what());
-  }
-  stbi_uc* data = stbi_load_from_memory(in, len, &w, &h, &channels, 3);
-  if (!data) throw error(name + ": cannot decode PNG: " + why());
-  image img(w, h);
-  for (std::size_t i = 0; i < img.pixels.size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      const float s = float(data[3 * i + std::size_t(c)]) / 255.0f;
-      img.pixels[i][c] = srgb ? srgb_to_linear(s) : s;
-    }
-  stbi_image_free(data);
+  image img = detail::decode_with_stb(bytes, name, detail::stb_format::png);
+  if (srgb)
+    for (rgb& p : img.pixels)
+      for (int c = 0; c < 3; ++c) p[c] = srgb_to_linear(p[c]);
   return img;
 }
 

@@ -1,0 +1,113 @@
+#pragma once
+// The reference the chapters of part 6 measure their error against: a long render of the path
+// tracer with MIS (chapter 2.3), made in two halves with seeds of their own. The halves' difference
+// measures the reference's own noise, E|A - B|^2 = 4 MSE((A + B) / 2), which is taken out of every
+// error reported against it. The halves are kept as PFM files and read back by the next run with
+// the same scene file (its bytes' hash is in the name), size, depth and sample count.
+#include <zraka/error.hpp>
+#include <zraka/image.hpp>
+#include <zraka/image_error.hpp>
+#include <zraka/image_io.hpp>
+#include <zraka/input_file.hpp>
+#include <zraka/path.hpp>
+#include <zraka/render.hpp>
+#include <zraka/scene_argument.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace zraka {
+
+// [listing mis-render]
+// The path tracer of chapter 2.3, its camera rays jittered over the pixel.
+inline image render_mis(const scene& sc, int spp, std::uint64_t seed, const path_options& po, const render_options& ro,
+                        render_stats& st) {
+  const path_tracer pt(sc, po);
+  const auto cam = sc.prepared_camera();
+  const int W = sc.settings.width, H = sc.settings.height;
+  image img(W, H);
+  st = render(img, spp, seed, [&](sample_context& c) {
+    const vec2 u = c.random.uniform2();
+    return pt(cam.generate((c.x + u.x) / W, (c.y + u.y) / H), c.random, c.rays);
+  }, ro);
+  return img;
+}
+// [end]
+
+// 8 hex digits of the FNV-1a hash of a --scene argument's file ("c++" for a scene built in C++).
+inline std::string scene_file_hash(const std::string& arg) {
+  std::filesystem::path p;
+  if (is_scene_path(arg)) p = std::filesystem::exists(arg) ? std::filesystem::path(arg) : resource_root() / arg;
+  else if (const named_scene* n = find_named_scene(arg); n && !n->build) p = resource_root() / "scenes" / (arg + ".yaml");
+  else return "c++";
+  std::uint32_t h = 2166136261u;
+  for (const char c : read_input_file(p)) h = (h ^ std::uint8_t(c)) * 16777619u;
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%08x", h);
+  return buf;
+}
+
+struct mis_reference {
+  image img;                 // (A + B) / 2
+  double mse_noise = 0;      // its own MSE, |A - B|^2 / 4
+  double relmse_noise = 0;   // its own relMSE, likewise
+  bool cached = false;       // both halves were read back
+  std::string files;         // "<stem>-{a,b}.pfm"
+
+  // An image's RMSE and relMSE against the truth, estimated: the reference's own noise taken out
+  // of the squared error (for relMSE approximately, since its weights use the reference).
+  std::vector<double> errors_of(const image& x) const {
+    const double e = rmse(x, img);
+    return {std::sqrt(std::max(0.0, e * e - mse_noise)), std::max(0.0, relmse(x, img) - relmse_noise)};
+  }
+};
+
+// file_of("-a") names a half's file; the halves use seeds seed + 1000 and seed + 1001.
+inline mis_reference make_mis_reference(const scene& sc, int spp, std::uint64_t seed, const path_options& po,
+                                        const render_options& ro,
+                                        const std::function<std::string(const std::string&)>& file_of,
+                                        std::uint64_t& nonfinite) {
+  if (spp < 2 || spp > 65536 || spp % 2) throw error("--ref-spp must be even, in 2..65536, got " + std::to_string(spp));
+  const int W = sc.settings.width, H = sc.settings.height;
+  image half[2];
+  mis_reference ref;
+  ref.cached = true;
+  for (int i = 0; i < 2; ++i) {
+    const std::string name = file_of(i ? "-b" : "-a");
+    std::error_code ec;
+    if (std::filesystem::exists(name, ec)) {
+      half[i] = read_pfm(name);
+      check_same_size(image(W, H), half[i]);
+      continue;
+    }
+    ref.cached = false;
+    render_stats rs;
+    const std::uint64_t s = seed + 1000 + std::uint64_t(i);
+    half[i] = render_mis(sc, spp / 2, s, po, ro, rs);
+    nonfinite += rs.nonfinite;
+    write_image(half[i], name);
+    std::printf("reference half %c: mis, %d spp, seed %llu, %.2f s, %llu NaN/inf samples\n", i ? 'b' : 'a', spp / 2,
+                static_cast<unsigned long long>(s), rs.seconds, static_cast<unsigned long long>(rs.nonfinite));
+  }
+  ref.img = image(W, H);
+  for (std::size_t i = 0; i < ref.img.pixels.size(); ++i) ref.img.pixels[i] = (half[0].pixels[i] + half[1].pixels[i]) * 0.5f;
+  const double d = rmse(half[0], half[1]);
+  ref.mse_noise = d * d / 4;
+  ref.relmse_noise = relmse(half[0], half[1]) / 4;
+  ref.files = file_of("-{a,b}");
+  return ref;
+}
+
+// The stem of a reference's files for a --scene argument and the settings it depends on.
+inline std::string reference_tag(const std::string& scene_arg, int W, int H, int depth, int spp) {
+  return "-reference-" + std::filesystem::path(scene_arg).stem().string() + "-" + scene_file_hash(scene_arg) + "-" +
+         std::to_string(W) + "x" + std::to_string(H) + "-d" + std::to_string(depth) + "-" + std::to_string(spp) + "spp";
+}
+
+}  // namespace zraka
