@@ -5,6 +5,7 @@
 // by at most k combined standard errors.
 #include <zraka/estimator.hpp>
 #include <zraka/image.hpp>
+#include <zraka/scene.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -17,6 +18,14 @@ namespace zraka_tests {
 using namespace zraka;
 
 constexpr int R = 4;  // R x R regions
+
+// A scene at a test's small size, its acceleration built.
+inline scene small(scene sc, int w, int h) {
+  sc.settings.width = w;
+  sc.settings.height = h;
+  sc.build_acceleration();
+  return sc;
+}
 
 // Per region and channel, the mean over the batches and its standard error.
 struct region_stats {

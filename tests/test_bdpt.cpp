@@ -23,12 +23,6 @@ using namespace zraka_tests;
 
 namespace {
 
-scene small(scene sc, int w, int h) {
-  sc.settings.width = w;
-  sc.settings.height = h;
-  sc.build_acceleration();
-  return sc;
-}
 scene point_lit_box() {
   scene sc = cornell_box<double>(cornell_variant::boxes);
   for (material& m : sc.materials)

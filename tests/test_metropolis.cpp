@@ -27,12 +27,6 @@ using namespace zraka_tests;
 
 namespace {
 
-scene small(scene sc, int w, int h) {
-  sc.settings.width = w;
-  sc.settings.height = h;
-  sc.build_acceleration();
-  return sc;
-}
 double value_of(std::uint32_t word) { return double(word) * 0x1p-32; }
 // The circular distance on [0, 1): a small step that wraps is small.
 double circular(double a, double b) {

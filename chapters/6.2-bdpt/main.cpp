@@ -89,9 +89,7 @@ int main(int argc, char** argv) {
     const mis_reference ref = make_mis_reference(
         sc, ref_spp, cli.seed, po, ro, [&](const std::string& half) { return cli.sibling(tag + half, ".pfm"); }, bad);
     const image& reference = ref.img;
-    std::printf("reference: mis, %d spp in two halves, %s %s; its own RMSE %.5f, relMSE %.5f (subtracted below)\n",
-                ref_spp, ref.cached ? "read from" : "cached in", ref.files.c_str(), std::sqrt(ref.mse_noise),
-                ref.relmse_noise);
+    std::printf("%s\n", ref.describe(ref_spp).c_str());
     // relMSE divides each pixel's squared error by ref^2 + 0.01, so fireflies in dark regions
     // count and the noise at the edges of a directly seen light (the pixel's jitter, the same
     // for both) counts less.

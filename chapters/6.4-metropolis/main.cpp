@@ -73,9 +73,7 @@ int main(int argc, char** argv) {
     const std::string tag = reference_tag(cli.scene, W, H, cli.depth, ref_spp);
     const mis_reference ref = make_mis_reference(
         sc, ref_spp, cli.seed, po, ro, [&](const std::string& half) { return cli.sibling(tag + half, ".pfm"); }, bad);
-    std::printf("reference: mis, %d spp in two halves, %s %s; its own RMSE %.5f, relMSE %.5f (subtracted below)\n",
-                ref_spp, ref.cached ? "read from" : "cached in", ref.files.c_str(), std::sqrt(ref.mse_noise),
-                ref.relmse_noise);
+    std::printf("%s\n", ref.describe(ref_spp).c_str());
     if (no_bdpt) std::printf("bdpt: not compared on this scene (%s)\n", no_bdpt->c_str());
 
     // [listing mlt-error-against-time]

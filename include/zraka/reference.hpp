@@ -60,6 +60,14 @@ struct mis_reference {
   bool cached = false;       // both halves were read back
   std::string files;         // "<stem>-{a,b}.pfm"
 
+  // "reference: mis, 512 spp in two halves, cached in <files>; its own RMSE ..., relMSE ..."
+  std::string describe(int spp) const {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "; its own RMSE %.5f, relMSE %.5f (subtracted below)", std::sqrt(mse_noise), relmse_noise);
+    return "reference: mis, " + std::to_string(spp) + " spp in two halves, " + (cached ? "read from " : "cached in ") +
+           files + buf;
+  }
+
   // An image's RMSE and relMSE against the truth, estimated: the reference's own noise taken out
   // of the squared error (for relMSE approximately, since its weights use the reference).
   std::vector<double> errors_of(const image& x) const {
