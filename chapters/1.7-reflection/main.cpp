@@ -23,9 +23,6 @@ using namespace zraka;
 
 namespace {
 
-// Rec. 709 luminance of a linear RGB colour: one brightness number per measurement.
-double luminance(rgb c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-
 struct ball {
   const char* label;
   material m;

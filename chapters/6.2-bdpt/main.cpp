@@ -85,11 +85,8 @@ int main(int argc, char** argv) {
 
     // The reference (reference.hpp): two halves of ref_spp / 2 samples with seeds of their own,
     // read back when an earlier run made them for the same scene file and settings.
-    const std::string tag = reference_tag(cli.scene, W, H, cli.depth, ref_spp);
-    const mis_reference ref = make_mis_reference(
-        sc, ref_spp, cli.seed, po, ro, [&](const std::string& half) { return cli.sibling(tag + half, ".pfm"); }, bad);
+    const mis_reference ref = program_reference(cli, sc, ref_spp, po, ro, bad);
     const image& reference = ref.img;
-    std::printf("%s\n", ref.describe(ref_spp).c_str());
     // relMSE divides each pixel's squared error by ref^2 + 0.01, so fireflies in dark regions
     // count and the noise at the edges of a directly seen light (the pixel's jitter, the same
     // for both) counts less.

@@ -66,14 +66,11 @@ int main(int argc, char** argv) {
     } catch (const error& e) {
       no_bdpt = e.what();
     }
-    { primary_sample_space probe(rng(0), rng(0), mo.pss); }  // a bad --sigma before the reference
+    check_pss_options(mo.pss);  // a bad --sigma before the reference
     std::printf("scene %s, %dx%d, at most %d bounces; %s\n%s\n", cli.scene.c_str(), W, H, cli.depth,
                 describe_built(sc).c_str(), light_set(sc).describe().c_str());
     std::uint64_t bad = 0;
-    const std::string tag = reference_tag(cli.scene, W, H, cli.depth, ref_spp);
-    const mis_reference ref = make_mis_reference(
-        sc, ref_spp, cli.seed, po, ro, [&](const std::string& half) { return cli.sibling(tag + half, ".pfm"); }, bad);
-    std::printf("%s\n", ref.describe(ref_spp).c_str());
+    const mis_reference ref = program_reference(cli, sc, ref_spp, po, ro, bad);
     if (no_bdpt) std::printf("bdpt: not compared on this scene (%s)\n", no_bdpt->c_str());
 
     // [listing mlt-error-against-time]
@@ -139,11 +136,12 @@ int main(int argc, char** argv) {
     std::printf("\nequal time (%.2f s), relMSE:", T);
     for (const auto& c : costs) std::printf(" %s %.5f", c.name, c.cost / T);
     std::printf("\n");
-    const double cm = costs[0].cost, cmis = costs.back().cost;
-    if (cm > 0 && cmis > 0)
-      std::printf("mlt reaches the same error as mis in %.2fx the time%s\n", cm / cmis,
-                  no_bdpt ? "" : ("; bdpt in " + std::to_string(costs[1].cost / cmis).substr(0, 5) + "x").c_str());
-    else
+    const double cm = costs.front().cost, cmis = costs.back().cost;  // mlt first, mis last
+    if (cm > 0 && cmis > 0) {
+      std::printf("mlt reaches the same error as mis in %.2fx the time", cm / cmis);
+      if (!no_bdpt) std::printf("; bdpt in %.3fx", costs[1].cost / cmis);
+      std::printf("\n");
+    } else
       std::printf("an error is below the reference's own noise; use a larger --ref-spp\n");
 
     std::vector<image> tiles{last_mlt};

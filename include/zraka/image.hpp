@@ -41,6 +41,9 @@ struct image {
   ZRAKA_COMPILED_FN static void check_size(long long w, long long h);
 };
 
+// Rec. 709 luminance of a linear RGB colour: one brightness number for a colour.
+inline double luminance(const rgb& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
 // Images of one size in a row, `gap` white pixels apart (the figures of part 6).
 inline image side_by_side(const std::vector<image>& tiles, int gap = 2) {
   const int w = tiles.at(0).width, h = tiles[0].height;

@@ -37,9 +37,6 @@
 
 namespace zraka {
 
-// The scalar a chain follows: luminance (Rec. 709 weights) of the linear RGB radiance.
-inline double luminance(const rgb& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-
 struct metropolis_options {
   pss_options pss;
   std::uint64_t bootstrap = 100000;  // independent samples that estimate b and seed the chains
@@ -65,16 +62,16 @@ constexpr std::uint32_t select_stream = 0x4d4c5402u;
 
 // [listing mlt-sample]
 // One sample of primary sample space: the film point from the first two numbers, then a path.
-template <class T> struct mlt_sample_t {
+struct mlt_sample_t {
   rgb L{0};
   double I = 0;  // luminance(L); 0 also for a NaN/inf L (counted, and never accepted)
   int x = 0, y = 0;
 };
 template <class T, class Camera>
-mlt_sample_t<T> mlt_sample(const path_tracer_t<T>& pt, const Camera& cam, int W, int H, rng& g, std::uint64_t& rays,
+mlt_sample_t mlt_sample(const path_tracer_t<T>& pt, const Camera& cam, int W, int H, rng& g, std::uint64_t& rays,
                            std::uint64_t& bad) {
   const vec2 u = g.uniform2();
-  mlt_sample_t<T> s;
+  mlt_sample_t s;
   s.x = std::min(W - 1, int(u.x * W)), s.y = std::min(H - 1, int(u.y * H));
   const rgb L = pt(cam.generate(T(u.x), T(u.y)), g, rays);
   if (!is_finite(L)) { ++bad; return s; }
@@ -90,9 +87,10 @@ metropolis_render_t render_metropolis(const scene_t<T>& sc, const path_options& 
   check_render_size(W, H, 1);
   if (mutations_per_pixel < 1) throw error("metropolis: the mutations per pixel must be at least 1");
   if (opt.chains < 1 || opt.chains > 1 << 20) throw error("metropolis: --chains must be in 1..2^20, got " + std::to_string(opt.chains));
-  if (opt.bootstrap < 1 || opt.bootstrap > (1ull << 32)) throw error("metropolis: --bootstrap must be in 1..2^32");
-  const pss_options check_pss = opt.pss;
-  { primary_sample_space probe(rng(0), rng(0), check_pss); }  // refuses a bad sigma before threads start
+  // The bootstrap keeps each sample's luminance and their running sums: 16 bytes a sample.
+  if (opt.bootstrap < 1 || opt.bootstrap > (1ull << 27))
+    throw error("metropolis: " + std::to_string(opt.bootstrap) + " bootstrap samples is not in 1..2^27 (fewer mutations or a smaller --bootstrap)");
+  check_pss_options(opt.pss);  // before threads start
   const std::uint64_t N = std::uint64_t(W) * std::uint64_t(H);
   if (mutations_per_pixel > (1ull << 40) / N) throw error("metropolis: too many mutations");
   const std::uint64_t M = mutations_per_pixel * N;
@@ -160,15 +158,15 @@ metropolis_render_t render_metropolis(const scene_t<T>& sc, const path_options& 
     primary_sample_space u(rng(seed, std::uint32_t(start), detail::bootstrap_stream),
                            rng(seed, std::uint32_t(c), detail::chain_stream), opt.pss);
     rng g = rng::from(u);
-    mlt_sample_t<T> cur = mlt_sample(pt, cam, W, H, g, r, b);  // the bootstrap's sample again
+    mlt_sample_t cur = mlt_sample(pt, cam, W, H, g, r, b);  // the bootstrap's sample again
     std::vector<vec3> film(N, vec3(0));
-    auto splat = [&](const mlt_sample_t<T>& s, double w) {
+    auto splat = [&](const mlt_sample_t& s, double w) {
       if (w > 0 && s.I > 0) film[std::size_t(s.y) * std::size_t(W) + std::size_t(s.x)] += vec3(s.L) * (w / s.I);
     };
     for (std::uint64_t k = 0; k < steps; ++k) {
       u.start_step();
       g = rng::from(u);
-      const mlt_sample_t<T> next = mlt_sample(pt, cam, W, H, g, r, b);
+      const mlt_sample_t next = mlt_sample(pt, cam, W, H, g, r, b);
       const double a = cur.I > 0 ? std::min(1.0, next.I / cur.I) : 1.0;
       splat(next, a);  // expected values: both states contribute, weighted by the acceptance
       splat(cur, 1 - a);

@@ -29,6 +29,13 @@ struct pss_options {
   double large_step_prob = 0.3;    // probability of a large step
 };
 
+// Refuses what the mutations cannot use, by name (programs call it before any other work).
+inline void check_pss_options(const pss_options& opt) {
+  if (!(opt.sigma > 0 && opt.sigma < 1)) throw error("metropolis: the small-step sigma must be in (0, 1)");
+  if (!(opt.large_step_prob >= 0 && opt.large_step_prob <= 1))
+    throw error("metropolis: the large-step probability must be in [0, 1]");
+}
+
 // [listing primary-sample-space]
 class primary_sample_space final : public number_source {
  public:
@@ -36,9 +43,7 @@ class primary_sample_space final : public number_source {
   // chain starts on the path the bootstrap chose); `chain`: the stream of the chain's choices.
   primary_sample_space(const rng& start, const rng& chain, const pss_options& opt)
       : start_(start), chain_(chain), opt_(opt) {
-    if (!(opt.sigma > 0 && opt.sigma < 1)) throw error("metropolis: the small-step sigma must be in (0, 1)");
-    if (!(opt.large_step_prob >= 0 && opt.large_step_prob <= 1))
-      throw error("metropolis: the large-step probability must be in [0, 1]");
+    check_pss_options(opt);
   }
 
   // Before the first start_step, the numbers are the start state's (step 0). Each call begins a

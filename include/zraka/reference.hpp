@@ -10,6 +10,7 @@
 #include <zraka/image_io.hpp>
 #include <zraka/input_file.hpp>
 #include <zraka/path.hpp>
+#include <zraka/program_options.hpp>
 #include <zraka/render.hpp>
 #include <zraka/scene_argument.hpp>
 
@@ -116,6 +117,17 @@ inline mis_reference make_mis_reference(const scene& sc, int spp, std::uint64_t 
 inline std::string reference_tag(const std::string& scene_arg, int W, int H, int depth, int spp) {
   return "-reference-" + std::filesystem::path(scene_arg).stem().string() + "-" + scene_file_hash(scene_arg) + "-" +
          std::to_string(W) + "x" + std::to_string(H) + "-d" + std::to_string(depth) + "-" + std::to_string(spp) + "spp";
+}
+
+// A chapter program's reference: its files next to --out (cli.sibling), named after --scene
+// and the settings; its description printed.
+inline mis_reference program_reference(const program_options& cli, const scene& sc, int spp, const path_options& po,
+                                       const render_options& ro, std::uint64_t& nonfinite) {
+  const std::string tag = reference_tag(cli.scene, sc.settings.width, sc.settings.height, po.max_depth, spp);
+  mis_reference ref = make_mis_reference(
+      sc, spp, cli.seed, po, ro, [&](const std::string& half) { return cli.sibling(tag + half, ".pfm"); }, nonfinite);
+  std::printf("%s\n", ref.describe(spp).c_str());
+  return ref;
 }
 
 }  // namespace zraka
