@@ -7,9 +7,16 @@
 #define ZRAKA_COMPILING
 #include <zraka/atomic_file.hpp>
 #include <zraka/cli.hpp>
+#include <zraka/convergence.hpp>
+#include <zraka/default_scene.hpp>
 #include <zraka/image.hpp>
 #include <zraka/image_io.hpp>
+#include <zraka/input_file.hpp>
+#include <zraka/limits.hpp>
+#include <zraka/mitsuba_export.hpp>
+#include <zraka/named_scenes.hpp>
 #include <zraka/program_options.hpp>
+#include <zraka/render.hpp>
 #if defined(ZRAKA_COMPILED_SCENE_FILE)  // built with yaml-cpp
 #include <zraka/scene_file.hpp>
 #endif

@@ -143,7 +143,7 @@ int main(int argc, char** argv) {
     }
     write_image(fig, out);
     write_image(reference, cli.sibling("-reference"));
-    for (int p = 0; p < 3; ++p) logs[p].write_csv(cli.sibling("-" + std::string(name(patterns[p])), ".csv"));
+    for (int p = 0; p < 3; ++p) logs[p].write_csv(cli.sibling(std::string("-").append(name(patterns[p])), ".csv"));
     std::printf("wrote %s (crop at %d,%d, %dx%d px, x%d; top regular, bottom stratified), %s, "
                 "%s, ...\n",
                 out.c_str(), cx, cy, crop, crop, zoom, cli.sibling("-reference").c_str(),

@@ -14,6 +14,7 @@
 //   ray's direction on the split axis) with a small fixed stack, no allocation; the any-hit
 //   variant for shadow rays stops at the first primitive that blocks.
 #include <zraka/aabb.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 
 #include <algorithm>
@@ -309,5 +310,13 @@ bool bvh_occluded(const bvh_t<T>& bvh, const ray_t<T>& r, T t_min, T t_max, Test
   }
   return false;
 }
+
+// Compiled once at double and float (compiled.hpp).
+ZRAKA_INSTANCE(bvh_t<double> build_bvh(const std::vector<aabb_t<double>>&,
+                                       const std::vector<vec3_t<double>>&, const bvh_build_options&))
+ZRAKA_INSTANCE(bvh_t<double> build_bvh(const std::vector<aabb_t<double>>&, const bvh_build_options&))
+ZRAKA_INSTANCE(bvh_t<float> build_bvh(const std::vector<aabb_t<float>>&,
+                                      const std::vector<vec3_t<float>>&, const bvh_build_options&))
+ZRAKA_INSTANCE(bvh_t<float> build_bvh(const std::vector<aabb_t<float>>&, const bvh_build_options&))
 
 }  // namespace zraka

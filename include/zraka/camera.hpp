@@ -6,6 +6,7 @@
 //
 // The settings are plain members; prepare() computes the lens frame once, and the prepared
 // camera's generate() makes rays:  auto cam = settings.prepare(); ray r = cam.generate(s, t);
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/ray.hpp>
 
@@ -41,26 +42,30 @@ template <class T> struct camera_t {
   };
 
   // Throws zraka::error for settings that define no camera (instead of making NaN rays).
-  prepared prepare() const {
-    if (!(vfov_degrees > T(0) && vfov_degrees < T(180)))
-      throw error("camera: vfov_degrees must be in (0, 180), got " + std::to_string(vfov_degrees));
-    if (!(aspect > T(0)) || !std::isfinite(aspect))
-      throw error("camera: aspect must be positive, got " + std::to_string(aspect));
-    if (!(aperture >= T(0)) || !(focus_distance >= T(0)))
-      throw error("camera: aperture and focus_distance must not be negative");
-    const vec3_t<T> w = normalize_or_zero(position - look_at);  // the camera looks along -w
-    const vec3_t<T> u = normalize_or_zero(glm::cross(up, w));
-    if (w == vec3_t<T>(0) || u == vec3_t<T>(0))
-      throw error("camera: position equals look_at, or up is parallel to the view direction");
-    const vec3_t<T> v = glm::cross(w, u);
-    const T focus = focus_distance > T(0) ? focus_distance : glm::length(look_at - position);
-    const T half_h = std::tan(vfov_degrees * pi<T> / T(360)) * focus;
-    const T half_w = aspect * half_h;
-    const vec3_t<T> top_left = position - focus * w - half_w * u + half_h * v;
-    return {position, u, v, top_left, T(2) * half_w * u, T(-2) * half_h * v, aperture / T(2)};
-  }
+  prepared prepare() const;
 };
 
+template <class T> typename camera_t<T>::prepared camera_t<T>::prepare() const {
+  if (!(vfov_degrees > T(0) && vfov_degrees < T(180)))
+    throw error("camera: vfov_degrees must be in (0, 180), got " + std::to_string(vfov_degrees));
+  if (!(aspect > T(0)) || !std::isfinite(aspect))
+    throw error("camera: aspect must be positive, got " + std::to_string(aspect));
+  if (!(aperture >= T(0)) || !(focus_distance >= T(0)))
+    throw error("camera: aperture and focus_distance must not be negative");
+  const vec3_t<T> w = normalize_or_zero(position - look_at);  // the camera looks along -w
+  const vec3_t<T> u = normalize_or_zero(glm::cross(up, w));
+  if (w == vec3_t<T>(0) || u == vec3_t<T>(0))
+    throw error("camera: position equals look_at, or up is parallel to the view direction");
+  const vec3_t<T> v = glm::cross(w, u);
+  const T focus = focus_distance > T(0) ? focus_distance : glm::length(look_at - position);
+  const T half_h = std::tan(vfov_degrees * pi<T> / T(360)) * focus;
+  const T half_w = aspect * half_h;
+  const vec3_t<T> top_left = position - focus * w - half_w * u + half_h * v;
+  return {position, u, v, top_left, T(2) * half_w * u, T(-2) * half_h * v, aperture / T(2)};
+}
+
 using camera = camera_t<double>;
+
+ZRAKA_INSTANCE(struct camera_t<double>)  // compiled.hpp
 
 }  // namespace zraka

@@ -3,7 +3,10 @@
 // and that every unit would otherwise compile again at -O3 (a chapter's main.cpp went from
 // 9.6 to ~2 CPU-s): the command-line layer on CLI11 (cli.hpp), the shared options' parsing and
 // checks (program_options.hpp), writing images with stb_image_write's PNG encoder (image_io.hpp),
-// atomic file writing (atomic_file.hpp) and image::check_size (image.hpp).
+// atomic file writing (atomic_file.hpp), image::check_size (image.hpp), reading input files and
+// the limits' checks (input_file.hpp, limits.hpp, render.hpp), the built-in scenes
+// (default_scene.hpp, named_scenes.hpp), the convergence table (convergence.hpp) and the Mitsuba
+// export (mitsuba_export.hpp).
 // Their functions are marked ZRAKA_COMPILED_FN:
 //   - linking the library zraka::compiled (src/compiled.cpp, built and installed with zraka) defines
 //     ZRAKA_COMPILED: the headers only declare them, the library holds them, compiled once;
@@ -22,4 +25,21 @@
 #define ZRAKA_COMPILED_DEFINITIONS 1
 #else
 #define ZRAKA_COMPILED_DEFINITIONS 0
+#endif
+
+// Templates at double, the precision of every chapter, are compiled once in the library too.
+// ZRAKA_INSTANCE(declaration), written after a template's definition, is
+//   - for the library's users an explicit instantiation declaration (extern template): a unit
+//     calls the library's copy instead of compiling its own;
+//   - in src/instances.cpp (ZRAKA_INSTANTIATING) the explicit instantiation definition;
+//   - header-only, nothing.
+// Only what is not inline benefits: a function template not declared inline, or a member defined
+// outside its class. A member defined inside its class is inline and is still compiled wherever
+// it is used, so the costly members of such classes are defined below them.
+#if defined(ZRAKA_COMPILED) && defined(ZRAKA_INSTANTIATING)
+#define ZRAKA_INSTANCE(...) template __VA_ARGS__;
+#elif defined(ZRAKA_COMPILED)
+#define ZRAKA_INSTANCE(...) extern template __VA_ARGS__;
+#else
+#define ZRAKA_INSTANCE(...)
 #endif

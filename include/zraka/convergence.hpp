@@ -12,6 +12,7 @@
 //    {"rmse", "relmse"}, fit column "rmse", and add(spp, seconds, {rmse, relmse}).
 //    (relMSE falls as 1/N, so its own slope is -1.)
 #include <zraka/atomic_file.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/estimator.hpp>
 
@@ -45,33 +46,8 @@ struct loglog_fit {
   std::size_t points = 0;
 };
 
-// [listing loglog-fit]
-// Fits ln y = a + b ln x. Points with x or y not positive and finite are skipped (an exact
-// zero error has no logarithm), so the fit needs at least two usable points.
-inline loglog_fit fit_loglog(const std::vector<double>& x, const std::vector<double>& y) {
-  std::vector<std::pair<double, double>> p;
-  for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i)
-    if (x[i] > 0 && y[i] > 0 && std::isfinite(x[i]) && std::isfinite(y[i]))
-      p.emplace_back(std::log(x[i]), std::log(y[i]));
-  loglog_fit f;
-  f.points = p.size();
-  if (p.size() < 2) return f;
-  double mx = 0, my = 0;  // centre first: sums of centred products do not cancel
-  for (auto [u, v] : p) mx += u, my += v;
-  mx /= double(p.size()), my /= double(p.size());
-  double sxx = 0, sxy = 0;
-  for (auto [u, v] : p) sxx += (u - mx) * (u - mx), sxy += (u - mx) * (v - my);
-  if (!(sxx > 0)) return f;  // all n equal: no slope
-  f.slope = sxy / sxx;
-  f.intercept = my - f.slope * mx;
-  if (p.size() > 2) {
-    double rss = 0;
-    for (auto [u, v] : p) rss += std::pow(v - f.intercept - f.slope * u, 2);
-    f.slope_stderr = std::sqrt(rss / double(p.size() - 2) / sxx);
-  }
-  return f;
-}
-// [end]
+// Fits ln y = a + b ln x, skipping points that have no logarithm (below).
+ZRAKA_COMPILED_FN loglog_fit fit_loglog(const std::vector<double>& x, const std::vector<double>& y);
 
 class convergence_log {
  public:
@@ -114,65 +90,16 @@ class convergence_log {
   }
 
   // Slope of ln(column) against ln(n); the fit column unless another is named.
-  loglog_fit fit(std::string_view column = {}) const {
-    const std::size_t c = column_index(column.empty() ? std::string_view(fit_column_) : column);
-    std::vector<double> x, y;
-    for (const auto& r : rows_) x.push_back(double(r.n)), y.push_back(r.values[c]);
-    return fit_loglog(x, y);
-  }
+  ZRAKA_COMPILED_FN loglog_fit fit(std::string_view column = {}) const;
 
   // The aligned table: a title line, a header and one line per row. NaN prints as n/a.
-  std::string table() const {
-    std::string s = title_ + "\n";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%12s %11s", n_name_.c_str(), "seconds");
-    s += buf;
-    for (const auto& c : columns_) std::snprintf(buf, sizeof buf, " %14s", c.c_str()), s += buf;
-    s += "\n";
-    for (const auto& r : rows_) {
-      std::snprintf(buf, sizeof buf, "%12llu %11.3e", static_cast<unsigned long long>(r.n),
-                    r.seconds);
-      s += buf;
-      for (double v : r.values) {
-        if (std::isnan(v))
-          std::snprintf(buf, sizeof buf, " %14s", "n/a");
-        else
-          std::snprintf(buf, sizeof buf, " %14.7g", v);
-        s += buf;
-      }
-      s += "\n";
-    }
-    return s;
-  }
+  ZRAKA_COMPILED_FN std::string table() const;
 
   // One line: the fitted slope of the fit column, with its standard error.
-  std::string slope_line(std::string_view column = {}) const {
-    const std::string name(column.empty() ? std::string_view(fit_column_) : column);
-    const loglog_fit f = fit(name);
-    char buf[160];
-    if (std::isnan(f.slope))
-      std::snprintf(buf, sizeof buf, "slope of log(%s) vs log(%s): n/a (%zu usable rows)",
-                    name.c_str(), n_name_.c_str(), f.points);
-    else
-      std::snprintf(buf, sizeof buf, "slope of log(%s) vs log(%s): %+.3f +- %.3f (%zu rows)",
-                    name.c_str(), n_name_.c_str(), f.slope, f.slope_stderr, f.points);
-    return buf;
-  }
+  ZRAKA_COMPILED_FN std::string slope_line(std::string_view column = {}) const;
 
   // CSV: a header line (n, seconds, columns...) and full-precision rows ("nan" for NaN).
-  std::string csv() const {
-    std::string s = n_name_ + ",seconds";
-    for (const auto& c : columns_) s += "," + c;
-    s += "\n";
-    char buf[40];
-    for (const auto& r : rows_) {
-      s += std::to_string(r.n);
-      std::snprintf(buf, sizeof buf, ",%.17g", r.seconds), s += buf;
-      for (double v : r.values) std::snprintf(buf, sizeof buf, ",%.17g", v), s += buf;
-      s += "\n";
-    }
-    return s;
-  }
+  ZRAKA_COMPILED_FN std::string csv() const;
 
   void write_csv(const std::filesystem::path& path) const { write_file_atomically(path, csv()); }
 
@@ -235,5 +162,92 @@ class convergence_log {
   std::string fit_column_;
   std::vector<convergence_row> rows_;
 };
+
+#if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
+// [listing loglog-fit]
+// Fits ln y = a + b ln x. Points with x or y not positive and finite are skipped (an exact
+// zero error has no logarithm), so the fit needs at least two usable points.
+ZRAKA_COMPILED_FN loglog_fit fit_loglog(const std::vector<double>& x, const std::vector<double>& y) {
+  std::vector<std::pair<double, double>> p;
+  for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i)
+    if (x[i] > 0 && y[i] > 0 && std::isfinite(x[i]) && std::isfinite(y[i]))
+      p.emplace_back(std::log(x[i]), std::log(y[i]));
+  loglog_fit f;
+  f.points = p.size();
+  if (p.size() < 2) return f;
+  double mx = 0, my = 0;  // centre first: sums of centred products do not cancel
+  for (auto [u, v] : p) mx += u, my += v;
+  mx /= double(p.size()), my /= double(p.size());
+  double sxx = 0, sxy = 0;
+  for (auto [u, v] : p) sxx += (u - mx) * (u - mx), sxy += (u - mx) * (v - my);
+  if (!(sxx > 0)) return f;  // all n equal: no slope
+  f.slope = sxy / sxx;
+  f.intercept = my - f.slope * mx;
+  if (p.size() > 2) {
+    double rss = 0;
+    for (auto [u, v] : p) rss += std::pow(v - f.intercept - f.slope * u, 2);
+    f.slope_stderr = std::sqrt(rss / double(p.size() - 2) / sxx);
+  }
+  return f;
+}
+// [end]
+
+ZRAKA_COMPILED_FN loglog_fit convergence_log::fit(std::string_view column) const {
+  const std::size_t c = column_index(column.empty() ? std::string_view(fit_column_) : column);
+  std::vector<double> x, y;
+  for (const auto& r : rows_) x.push_back(double(r.n)), y.push_back(r.values[c]);
+  return fit_loglog(x, y);
+}
+
+ZRAKA_COMPILED_FN std::string convergence_log::table() const {
+  std::string s = title_ + "\n";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%12s %11s", n_name_.c_str(), "seconds");
+  s += buf;
+  for (const auto& c : columns_) std::snprintf(buf, sizeof buf, " %14s", c.c_str()), s += buf;
+  s += "\n";
+  for (const auto& r : rows_) {
+    std::snprintf(buf, sizeof buf, "%12llu %11.3e", static_cast<unsigned long long>(r.n),
+                  r.seconds);
+    s += buf;
+    for (double v : r.values) {
+      if (std::isnan(v))
+        std::snprintf(buf, sizeof buf, " %14s", "n/a");
+      else
+        std::snprintf(buf, sizeof buf, " %14.7g", v);
+      s += buf;
+    }
+    s += "\n";
+  }
+  return s;
+}
+
+ZRAKA_COMPILED_FN std::string convergence_log::slope_line(std::string_view column) const {
+  const std::string name(column.empty() ? std::string_view(fit_column_) : column);
+  const loglog_fit f = fit(name);
+  char buf[160];
+  if (std::isnan(f.slope))
+    std::snprintf(buf, sizeof buf, "slope of log(%s) vs log(%s): n/a (%zu usable rows)",
+                  name.c_str(), n_name_.c_str(), f.points);
+  else
+    std::snprintf(buf, sizeof buf, "slope of log(%s) vs log(%s): %+.3f +- %.3f (%zu rows)",
+                  name.c_str(), n_name_.c_str(), f.slope, f.slope_stderr, f.points);
+  return buf;
+}
+
+ZRAKA_COMPILED_FN std::string convergence_log::csv() const {
+  std::string s = n_name_ + ",seconds";
+  for (const auto& c : columns_) s += "," + c;
+  s += "\n";
+  char buf[40];
+  for (const auto& r : rows_) {
+    s += std::to_string(r.n);
+    std::snprintf(buf, sizeof buf, ",%.17g", r.seconds), s += buf;
+    for (double v : r.values) std::snprintf(buf, sizeof buf, ",%.17g", v), s += buf;
+    s += "\n";
+  }
+  return s;
+}
+#endif  // ZRAKA_COMPILED_DEFINITIONS
 
 }  // namespace zraka

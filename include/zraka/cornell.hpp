@@ -7,6 +7,7 @@
 //   spheres a mirror sphere and a glass sphere (the depth sweep of the thesis's Figure 4.4).
 // Coordinates: y up, the room spans x and z in [-1, 1], y in [0, 2]; the camera looks down -z.
 // scenes/cornell*.yaml describe the same scenes for the scene-file loader.
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/scene.hpp>
 
@@ -90,5 +91,9 @@ template <class T> scene_t<T> cornell_box(cornell_variant variant = cornell_vari
   return sc;
 }
 // [end]
+
+// Compiled once at double (compiled.hpp).
+ZRAKA_INSTANCE(void add_box(scene_t<double>&, const vec3_t<double>&, const vec3_t<double>&, double, int))
+ZRAKA_INSTANCE(scene_t<double> cornell_box(cornell_variant))
 
 }  // namespace zraka

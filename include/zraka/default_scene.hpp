@@ -4,6 +4,7 @@
 // cube mesh, a soft area light and a point light. scenes/default.yaml (book 4.1) writes the
 // same scene as a file; a test renders both and finds the same image, bit for bit.
 #include <zraka/affine.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/material.hpp>
 #include <zraka/mesh.hpp>
 #include <zraka/scene.hpp>
@@ -16,7 +17,12 @@ namespace zraka {
 
 // A cube of side 1 centred at the origin: six faces of two triangles, one normal per face, wound
 // counter-clockwise seen from outside (scenes/meshes/cube.obj has the same cube).
-inline mesh unit_cube_mesh() {
+ZRAKA_COMPILED_FN mesh unit_cube_mesh();
+
+ZRAKA_COMPILED_FN scene default_scene();
+
+#if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
+ZRAKA_COMPILED_FN mesh unit_cube_mesh() {
   mesh m;
   // Each face: a corner, two edges (their cross product points out), the outward normal.
   struct face { vec3 corner, u, v, n; };
@@ -41,7 +47,7 @@ inline mesh unit_cube_mesh() {
 }
 
 // [listing default-scene]
-inline scene default_scene() {
+ZRAKA_COMPILED_FN scene default_scene() {
   scene sc;
   sc.settings.width = 400, sc.settings.height = 240, sc.settings.spp = 16;
   sc.background = rgb(0.55f, 0.7f, 0.95f);
@@ -80,5 +86,6 @@ inline scene default_scene() {
   return sc;
 }
 // [end]
+#endif  // ZRAKA_COMPILED_DEFINITIONS
 
 }  // namespace zraka

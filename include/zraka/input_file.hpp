@@ -5,6 +5,7 @@
 // FIFO with no writer cannot block the program and an endless stream cannot fill the memory.
 //
 //   const std::string text = zraka::read_input_file(path);   // throws zraka::error
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/limits.hpp>
 
@@ -39,7 +40,10 @@ struct fd_guard {
 }  // namespace detail
 
 // The bytes of the regular file `path`; errors start with the path as given.
-inline std::string read_input_file(const std::filesystem::path& path) {
+ZRAKA_COMPILED_FN std::string read_input_file(const std::filesystem::path& path);
+
+#if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
+ZRAKA_COMPILED_FN std::string read_input_file(const std::filesystem::path& path) {
   const std::string name = path.string();
   struct stat st {};
   // stat follows symbolic links: /dev/stdin is judged by what it points to.
@@ -72,5 +76,6 @@ inline std::string read_input_file(const std::filesystem::path& path) {
   }
   return bytes;
 }
+#endif  // ZRAKA_COMPILED_DEFINITIONS
 
 }  // namespace zraka

@@ -7,6 +7,7 @@
 //
 // The defaults keep the peak memory of any input under 1 MB below 1 GiB (tests/hostile/ checks
 // it under an address-space limit) and allow everything in scenes/ many times over.
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 
 #include <algorithm>
@@ -41,16 +42,10 @@ inline input_limits& limits() {
 }
 
 // "(raise with --limit NAME=N)": the one wording every limit error ends with.
-inline std::string raise_hint(std::string_view name) {
-  return "(raise with --limit " + std::string(name) + "=N)";
-}
+ZRAKA_COMPILED_FN std::string raise_hint(std::string_view name);
 
 // Throws "WHAT is N, more than the limit of M (raise with --limit NAME=N)" when value > limit.
-inline void check_limit(std::uint64_t value, std::uint64_t limit, std::string_view name, const std::string& what) {
-  if (value > limit)
-    throw error(what + " is " + std::to_string(value) + ", more than the limit of " + std::to_string(limit) + " " +
-                raise_hint(name));
-}
+ZRAKA_COMPILED_FN void check_limit(std::uint64_t value, std::uint64_t limit, std::string_view name, const std::string& what);
 
 // Sets one limit from "NAME=VALUE" (the argument of --limit).
 inline void set_limit(input_limits& l, std::string_view assignment) {
@@ -78,7 +73,26 @@ inline void set_limit(input_limits& l, std::string_view assignment) {
 }
 
 // The work of one render: pixels and pixels x spp within the limits.
-inline void check_render_size(long long width, long long height, long long spp) {
+ZRAKA_COMPILED_FN void check_render_size(long long width, long long height, long long spp);
+
+// Threads a program may start: threads_per_core for each hardware thread.
+inline long long max_threads() {
+  const unsigned cores = std::thread::hardware_concurrency();
+  return (long long)(cores ? cores : 1) * (long long)std::min<std::uint64_t>(limits().threads_per_core, 1u << 20);
+}
+
+#if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
+ZRAKA_COMPILED_FN std::string raise_hint(std::string_view name) {
+  return "(raise with --limit " + std::string(name) + "=N)";
+}
+
+ZRAKA_COMPILED_FN void check_limit(std::uint64_t value, std::uint64_t limit, std::string_view name, const std::string& what) {
+  if (value > limit)
+    throw error(what + " is " + std::to_string(value) + ", more than the limit of " + std::to_string(limit) + " " +
+                raise_hint(name));
+}
+
+ZRAKA_COMPILED_FN void check_render_size(long long width, long long height, long long spp) {
   const auto pixels = std::uint64_t(width) * std::uint64_t(height);
   check_limit(pixels, limits().pixels, "pixels", "the image size " + std::to_string(width) + "x" + std::to_string(height) + " in pixels");
   const std::uint64_t s = spp > 0 ? std::uint64_t(spp) : 0;
@@ -87,11 +101,6 @@ inline void check_render_size(long long width, long long height, long long spp) 
                 " spp are more samples than the limit of " + std::to_string(limits().samples) + " " +
                 raise_hint("samples"));
 }
-
-// Threads a program may start: threads_per_core for each hardware thread.
-inline long long max_threads() {
-  const unsigned cores = std::thread::hardware_concurrency();
-  return (long long)(cores ? cores : 1) * (long long)std::min<std::uint64_t>(limits().threads_per_core, 1u << 20);
-}
+#endif  // ZRAKA_COMPILED_DEFINITIONS
 
 }  // namespace zraka

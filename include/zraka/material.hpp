@@ -27,6 +27,7 @@
 // scatter(), brdf_cos() and scatter_pdf() (material::custom). Renderers that cannot run one
 // (whitted.hpp, the OpenCL kernel) refuse it by name: is_custom().
 #include <zraka/bxdf.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/custom_bsdf.hpp>
 #include <zraka/error.hpp>
 #include <zraka/hit.hpp>
@@ -333,5 +334,13 @@ std::optional<scatter_t<T>> scatter(const material& m, const vec3_t<T>& d, const
   return std::nullopt;
 }
 // [end]
+
+// Compiled once at double (compiled.hpp).
+ZRAKA_INSTANCE(std::optional<scatter_t<double>> scatter(const material&, const vec3_t<double>&,
+                                                        const hit_t<double>&, rng&))
+ZRAKA_INSTANCE(rgb brdf_cos(const material&, const hit_t<double>&, const vec3_t<double>&,
+                            const vec3_t<double>&))
+ZRAKA_INSTANCE(double scatter_pdf(const material&, const hit_t<double>&, const vec3_t<double>&,
+                                  const vec3_t<double>&))
 
 }  // namespace zraka

@@ -9,6 +9,7 @@
 // leaving into its front side returns to the global medium. Surfaces that name no medium do not
 // change it (a glass sphere in fog is full of fog unless it names a medium). Shapes with media
 // do not nest: the outside of each is the global medium.
+#include <zraka/compiled.hpp>
 #include <zraka/medium.hpp>
 #include <zraka/scene.hpp>
 #include <zraka/scene_query.hpp>
@@ -75,5 +76,10 @@ template <class T> void check_media(const scene_t<T>& sc, const medium_options& 
                   "channel (sigma_a + sigma_s); make it gray or use the march estimator");
   }
 }
+
+// Compiled once at double (compiled.hpp).
+ZRAKA_INSTANCE(rgb shadow_transmittance(const scene_t<double>&, segment_t<double>, int, rng&,
+                                        const medium_options&, std::uint64_t&))
+ZRAKA_INSTANCE(void check_media(const scene_t<double>&, const medium_options&))
 
 }  // namespace zraka

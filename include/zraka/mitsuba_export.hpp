@@ -4,6 +4,7 @@
 // triangles (every mesh's too, flat), point lights and homogeneous media (book 6.1). What the
 // converter cannot express is refused by name (zraka::error): an infinite plane, a user shape,
 // a density grid, an environment light, a custom BSDF, a rough material, a kind it does not know. Numbers are written with 17 digits, so doubles survive the trip.
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/material.hpp>
 #include <zraka/scene.hpp>
@@ -27,7 +28,10 @@ inline const char* mitsuba_kind(material_kind k) {
 }  // namespace detail
 
 // Throws zraka::error for what the converter cannot express (see the top).
-inline std::string mitsuba_scene_json(const scene& sc, int width, int height, int depth) {
+ZRAKA_COMPILED_FN std::string mitsuba_scene_json(const scene& sc, int width, int height, int depth);
+
+#if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
+ZRAKA_COMPILED_FN std::string mitsuba_scene_json(const scene& sc, int width, int height, int depth) {
   if (!sc.planes.empty()) throw error("--export: Mitsuba has no infinite plane; use a large quad");
   if (!sc.user_shapes.empty())
     throw error("--export: a user shape ('" + sc.user_shapes[0].shape->name() + "') cannot be exported");
@@ -117,5 +121,6 @@ inline std::string mitsuba_scene_json(const scene& sc, int width, int height, in
   o << "]\n}\n";
   return o.str();
 }
+#endif  // ZRAKA_COMPILED_DEFINITIONS
 
 }  // namespace zraka

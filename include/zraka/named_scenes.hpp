@@ -4,6 +4,7 @@
 // for a file scenes/NAME.yaml under the resource root. A `.yaml` path is a file of its own; see
 // scene_argument.hpp, which loads either. This header needs no YAML library, so the real-time
 // chapter, its tests and its benchmark use it as they are.
+#include <zraka/compiled.hpp>
 #include <zraka/cornell.hpp>
 #include <zraka/default_scene.hpp>
 #include <zraka/error.hpp>
@@ -15,28 +16,9 @@
 
 namespace zraka {
 
-// [listing spheres-scene]
 // Diffuse spheres on a checkered ground sphere under a blue sky, lit by a small glowing sphere:
 // only spheres and Lambertian materials, the scene the specialised kernel is fastest on.
-inline scene spheres_scene() {
-  scene sc;
-  const int ground = sc.add_material(material::lambertian(texture::checker(rgb(0.75f), rgb(0.3f), 0.5)));
-  const int red = sc.add_material(material::lambertian(rgb(0.7f, 0.15f, 0.1f)));
-  const int blue = sc.add_material(material::lambertian(rgb(0.15f, 0.3f, 0.7f)));
-  const int white = sc.add_material(material::lambertian(rgb(0.8f)));
-  const int lamp = sc.add_material(material::emitter(rgb(12.0f, 10.0f, 7.0f)));
-  sc.add(sphere{{0, -1000, 0}, 1000}, ground);
-  sc.add(sphere{{-1.1, 0.5, 0}, 0.5}, red);
-  sc.add(sphere{{0, 0.7, -0.6}, 0.7}, white);
-  sc.add(sphere{{1.1, 0.45, 0.3}, 0.45}, blue);
-  sc.add(sphere{{1.5, 2.6, 1.5}, 0.5}, lamp);
-  sc.background = rgb(0.35f, 0.45f, 0.6f);
-  sc.camera.position = {0, 1.4, 4.2};
-  sc.camera.look_at = {0, 0.5, 0};
-  sc.camera.vfov_degrees = 40;
-  return sc;
-}
-// [end]
+ZRAKA_COMPILED_FN scene spheres_scene();
 
 // The furnace (book 2.3): the camera inside a sphere of albedo a that glows with L_e on its
 // inside. Every path sees L_e at each bounce, weighted a^k, so L = L_e (1 + a + a^2 + ...) =
@@ -85,11 +67,7 @@ inline constexpr std::array<named_scene, 17> named_scenes{{
 }};
 
 // "cornell, cornell-glass, ..." for --help and error messages.
-inline std::string named_scene_list() {
-  std::string s;
-  for (const named_scene& n : named_scenes) s += (s.empty() ? "" : ", ") + std::string(n.name);
-  return s;
-}
+ZRAKA_COMPILED_FN std::string named_scene_list();
 
 // nullptr for a name that is not in the registry.
 inline const named_scene* find_named_scene(std::string_view name) {
@@ -106,5 +84,34 @@ inline scene builtin_scene(std::string_view name) {
   if (!n->build) throw error("scene '" + std::string(name) + "' is a scene file (" + std::string(n->what) + "); this program reads no YAML");
   return n->build();
 }
+
+#if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
+// [listing spheres-scene]
+ZRAKA_COMPILED_FN scene spheres_scene() {
+  scene sc;
+  const int ground = sc.add_material(material::lambertian(texture::checker(rgb(0.75f), rgb(0.3f), 0.5)));
+  const int red = sc.add_material(material::lambertian(rgb(0.7f, 0.15f, 0.1f)));
+  const int blue = sc.add_material(material::lambertian(rgb(0.15f, 0.3f, 0.7f)));
+  const int white = sc.add_material(material::lambertian(rgb(0.8f)));
+  const int lamp = sc.add_material(material::emitter(rgb(12.0f, 10.0f, 7.0f)));
+  sc.add(sphere{{0, -1000, 0}, 1000}, ground);
+  sc.add(sphere{{-1.1, 0.5, 0}, 0.5}, red);
+  sc.add(sphere{{0, 0.7, -0.6}, 0.7}, white);
+  sc.add(sphere{{1.1, 0.45, 0.3}, 0.45}, blue);
+  sc.add(sphere{{1.5, 2.6, 1.5}, 0.5}, lamp);
+  sc.background = rgb(0.35f, 0.45f, 0.6f);
+  sc.camera.position = {0, 1.4, 4.2};
+  sc.camera.look_at = {0, 0.5, 0};
+  sc.camera.vfov_degrees = 40;
+  return sc;
+}
+// [end]
+
+ZRAKA_COMPILED_FN std::string named_scene_list() {
+  std::string s;
+  for (const named_scene& n : named_scenes) s += (s.empty() ? "" : ", ") + std::string(n.name);
+  return s;
+}
+#endif  // ZRAKA_COMPILED_DEFINITIONS
 
 }  // namespace zraka

@@ -27,6 +27,7 @@
 //
 // The OpenCL kernel (kernels/pathtrace.cl) mirrors this loop line for line (without media:
 // gpu_scene.hpp refuses them).
+#include <zraka/compiled.hpp>
 #include <zraka/lights.hpp>
 #include <zraka/material.hpp>
 #include <zraka/media.hpp>
@@ -196,19 +197,28 @@ template <class T> struct path_tracer_t {
   light_set_t<T> lights;
   path_options opt;
 
-  path_tracer_t(const scene_t<T>& scene, const path_options& o) : sc(scene), lights(scene, o.lights), opt(o) {
-    if (o.max_depth < 0) throw error("the maximum depth must not be negative, got " + std::to_string(o.max_depth));
-    if (o.rr_depth < 0) throw error("the Russian roulette depth must not be negative");
-    check_media(scene, o.media);
-    if (o.method == integrator::naive && !scene.point_lights.empty())
-      throw error("integrator naive: the scene has " + std::to_string(scene.point_lights.size()) +
-                  " point light(s), which a ray can never hit; use nee or mis");
-  }
+  path_tracer_t(const scene_t<T>& scene, const path_options& o);
   rgb operator()(const ray_t<T>& r, rng& g, std::uint64_t& rays) const {
     return path_radiance(sc, lights, r, g, opt, rays);
   }
 };
 
+template <class T>
+path_tracer_t<T>::path_tracer_t(const scene_t<T>& scene, const path_options& o)
+    : sc(scene), lights(scene, o.lights), opt(o) {
+  if (o.max_depth < 0) throw error("the maximum depth must not be negative, got " + std::to_string(o.max_depth));
+  if (o.rr_depth < 0) throw error("the Russian roulette depth must not be negative");
+  check_media(scene, o.media);
+  if (o.method == integrator::naive && !scene.point_lights.empty())
+    throw error("integrator naive: the scene has " + std::to_string(scene.point_lights.size()) +
+                " point light(s), which a ray can never hit; use nee or mis");
+}
+
 using path_tracer = path_tracer_t<double>;
+
+// Compiled once at double (compiled.hpp).
+ZRAKA_INSTANCE(rgb path_radiance(const scene_t<double>&, const light_set_t<double>&, ray_t<double>,
+                                 rng&, const path_options&, std::uint64_t&))
+ZRAKA_INSTANCE(struct path_tracer_t<double>)
 
 }  // namespace zraka

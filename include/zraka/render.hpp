@@ -9,9 +9,10 @@
 //
 // A sample that comes back NaN or infinite is counted and left out of the sum (so one bad path
 // does not turn the pixel black or white); the count is reported, because it signals a bug.
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
-#include <zraka/limits.hpp>
 #include <zraka/image.hpp>
+#include <zraka/limits.hpp>
 #include <zraka/rng.hpp>
 #include <zraka/stopwatch.hpp>
 
@@ -54,17 +55,7 @@ struct sample_context {
 
 // At most limits().threads_per_core per hardware thread: more gain nothing, and a typo such as
 // 100000 would otherwise end in std::terminate when the system runs out of threads.
-inline int resolve_threads(int requested) {
-  if (requested < 0) throw error("--threads must be 0 (all) or positive, got " + std::to_string(requested));
-  const long long cap = max_threads();
-  if (requested > cap)
-    throw error("--threads " + std::to_string(requested) + " is more than " + std::to_string(cap) + " (" +
-                std::to_string(limits().threads_per_core) + " per core on this " +
-                std::to_string(std::max(1u, std::thread::hardware_concurrency())) + "-core machine) " +
-                raise_hint("threads_per_core"));
-  if (requested > 0) return requested;
-  return int(std::max(1u, std::thread::hardware_concurrency()));
-}
+ZRAKA_COMPILED_FN int resolve_threads(int requested);
 
 // [listing render]
 // fn(sample_context&) -> rgb. Pixel (x, y) gets the mean of its spp samples; the samples of
@@ -161,5 +152,19 @@ inline std::string summary(const image& img, int spp, const render_stats& s) {
                 static_cast<unsigned long long>(s.nonfinite));
   return buf;
 }
+
+#if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
+ZRAKA_COMPILED_FN int resolve_threads(int requested) {
+  if (requested < 0) throw error("--threads must be 0 (all) or positive, got " + std::to_string(requested));
+  const long long cap = max_threads();
+  if (requested > cap)
+    throw error("--threads " + std::to_string(requested) + " is more than " + std::to_string(cap) + " (" +
+                std::to_string(limits().threads_per_core) + " per core on this " +
+                std::to_string(std::max(1u, std::thread::hardware_concurrency())) + "-core machine) " +
+                raise_hint("threads_per_core"));
+  if (requested > 0) return requested;
+  return int(std::max(1u, std::thread::hardware_concurrency()));
+}
+#endif  // ZRAKA_COMPILED_DEFINITIONS
 
 }  // namespace zraka

@@ -12,6 +12,7 @@
 // them to pay; planes are infinite and are always tested.
 #include <zraka/bvh.hpp>
 #include <zraka/camera.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/environment.hpp>
 #include <zraka/material.hpp>
 #include <zraka/medium.hpp>
@@ -124,23 +125,7 @@ template <class T> struct scene_t {
   // pick a point on): its light is counted only where a ray finds it (lights.hpp says so).
   object_ref add(const plane_t<T>& p, int mat) { return push(planes, p, mat, shape_kind::plane); }
   object_ref add(const triangle_t<T>& t, int mat) { return push(triangles, t, mat, shape_kind::triangle); }
-  object_ref add(mesh_t<T> m, int mat) {
-    check_material(mat);
-    if (!m.texcoords.empty() && m.texcoords.size() != m.positions.size())
-      throw error("mesh: " + std::to_string(m.texcoords.size()) + " texture coordinates for " +
-                  std::to_string(m.positions.size()) + " positions");
-    if (!m.normals.empty() && m.normals.size() != m.positions.size())
-      throw error("mesh: " + std::to_string(m.normals.size()) + " normals for " +
-                  std::to_string(m.positions.size()) + " vertices");
-    stopwatch clock;
-    mesh_object_t<T> o;
-    o.bvh = triangle_bvh(m);
-    o.build_seconds = clock.seconds();
-    o.shape = std::move(m);
-    o.material = mat;
-    meshes.push_back(std::move(o));
-    return {shape_kind::mesh, static_cast<int>(meshes.size()) - 1};
-  }
+  object_ref add(mesh_t<T> m, int mat);  // builds the mesh's own BVH
   object_ref add(user_shape_ptr<T> s, int mat) {
     if (!s) throw error("user shape: null");
     const aabb_t<T> b = s->bounds();
@@ -186,6 +171,24 @@ template <class T> struct scene_t {
     return {k, static_cast<int>(v.size()) - 1};
   }
 };
+
+template <class T> object_ref scene_t<T>::add(mesh_t<T> m, int mat) {
+  check_material(mat);
+  if (!m.texcoords.empty() && m.texcoords.size() != m.positions.size())
+    throw error("mesh: " + std::to_string(m.texcoords.size()) + " texture coordinates for " +
+                std::to_string(m.positions.size()) + " positions");
+  if (!m.normals.empty() && m.normals.size() != m.positions.size())
+    throw error("mesh: " + std::to_string(m.normals.size()) + " normals for " +
+                std::to_string(m.positions.size()) + " vertices");
+  stopwatch clock;
+  mesh_object_t<T> o;
+  o.bvh = triangle_bvh(m);
+  o.build_seconds = clock.seconds();
+  o.shape = std::move(m);
+  o.material = mat;
+  meshes.push_back(std::move(o));
+  return {shape_kind::mesh, static_cast<int>(meshes.size()) - 1};
+}
 
 using scene = scene_t<double>;
 
@@ -336,5 +339,7 @@ template <class T> bool scene_t<T>::build_acceleration(std::size_t threshold) {
   accel.seconds = clock.seconds();
   return true;
 }
+
+ZRAKA_INSTANCE(struct scene_t<double>)  // compiled.hpp
 
 }  // namespace zraka

@@ -4,6 +4,7 @@
 // BVH (bvh.hpp); planes are infinite and are always tested. Renderers never know which of the
 // two happened.
 #include <zraka/bvh.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/scene.hpp>
 #include <zraka/spawn.hpp>
 
@@ -109,5 +110,10 @@ template <class T> std::string describe_built(const scene_t<T>& sc) {
   }
   return out;
 }
+
+// Compiled once at double (compiled.hpp).
+ZRAKA_INSTANCE(bool nearest_hit(const scene_t<double>&, const ray_t<double>&, scene_hit_t<double>&, double))
+ZRAKA_INSTANCE(bool occluded(const scene_t<double>&, const segment_t<double>&))
+ZRAKA_INSTANCE(std::string describe_built(const scene_t<double>&))
 
 }  // namespace zraka

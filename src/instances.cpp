@@ -1,0 +1,16 @@
+// The templates that zraka's headers mark ZRAKA_INSTANCE, compiled here once at double (and the
+// BVH builder at float, for meshes), instead of in every program that uses them (compiled.hpp).
+// Every header that marks one is included here, so that each instance is defined exactly once.
+#ifndef ZRAKA_COMPILED
+#error "build src/instances.cpp through the zraka_compiled target (it defines ZRAKA_COMPILED)"
+#endif
+#define ZRAKA_INSTANTIATING
+#include <zraka/bvh.hpp>
+#include <zraka/camera.hpp>
+#include <zraka/cornell.hpp>
+#include <zraka/lights.hpp>
+#include <zraka/material.hpp>
+#include <zraka/media.hpp>
+#include <zraka/path.hpp>
+#include <zraka/scene.hpp>
+#include <zraka/scene_query.hpp>
