@@ -36,9 +36,7 @@ if(ZRAKA_PCH)
     add_library(zraka_pch_${kind} OBJECT ${host_src})
     # The same usage requirements as its users, so that the flags match.
     target_link_libraries(zraka_pch_${kind} PRIVATE zraka::zraka zraka_warnings)
-    if(kind STREQUAL "programs")
-      target_link_libraries(zraka_pch_${kind} PRIVATE zraka::compiled)  # its -DZRAKA_COMPILED
-    endif()
+    target_link_libraries(zraka_pch_${kind} PRIVATE zraka::compiled)  # its -DZRAKA_COMPILED
     target_precompile_headers(zraka_pch_${kind} PRIVATE ${CMAKE_CURRENT_LIST_DIR}/pch/${kind}.hpp)
   endforeach()
 endif()

@@ -11,6 +11,11 @@
 #include <zraka/whitted.hpp>
 
 #include <doctest/doctest.h>
+#if !ZRAKA_COMPILED_DEFINITIONS  // else image_io.hpp has stb_image_write, for writing .hdr files too
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb/stb_image_write.h>
+#endif
 
 #include <cmath>
 #include <unistd.h>
