@@ -5,12 +5,14 @@
 #error "build src/instances.cpp through the zraka_compiled target (it defines ZRAKA_COMPILED)"
 #endif
 #define ZRAKA_INSTANTIATING
+#include <zraka/bdpt.hpp>
 #include <zraka/bvh.hpp>
 #include <zraka/camera.hpp>
 #include <zraka/cornell.hpp>
 #include <zraka/lights.hpp>
 #include <zraka/material.hpp>
 #include <zraka/media.hpp>
+#include <zraka/metropolis.hpp>
 #include <zraka/path.hpp>
 #include <zraka/scene.hpp>
 #include <zraka/scene_query.hpp>

@@ -27,6 +27,7 @@
 // pixel, sample) and splat into the band's own film, and the films are summed in band order, so
 // --seed gives the same bits for any thread count.
 #include <zraka/camera_importance.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
 #include <zraka/lights.hpp>
@@ -514,5 +515,7 @@ template <class T> bdpt_render_t render_bdpt(const scene_t<T>& sc, int spp, std:
   return out;
 }
 // [end]
+
+ZRAKA_INSTANCE(bdpt_render_t render_bdpt(const scene_t<double>&, int, std::uint64_t, const bdpt_options&))  // compiled.hpp
 
 }  // namespace zraka

@@ -18,6 +18,7 @@
 // Determinism: bootstrap sample i uses rng(seed, i, bootstrap_stream), chain c its own streams;
 // each chain splats into an image of its own, and the chains' images are added in chain order,
 // so the image is the same for a seed whatever the thread count.
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
 #include <zraka/path.hpp>
@@ -203,5 +204,8 @@ metropolis_render_t render_metropolis(const scene_t<T>& sc, const path_options& 
   out.rays = rays.load(), out.nonfinite = bad.load();
   return out;
 }
+
+ZRAKA_INSTANCE(metropolis_render_t render_metropolis(const scene_t<double>&, const path_options&, std::uint64_t,
+                                                    std::uint64_t, const metropolis_options&))  // compiled.hpp
 
 }  // namespace zraka
