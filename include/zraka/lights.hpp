@@ -150,7 +150,6 @@ template <class T> class light_set_t {
   // "lights: 2 (1 quad, 1 point light), chosen by power; hit only: plane 0"
   std::string describe() const;
 
-
   // ------------------------------------------------------------ emission sampling (book 6.2)
   // One light chosen by u_select (as sample() chooses), a point on it by u_pos (uniform in
   // area; a sphere's too), a direction leaving it by u_dir.
