@@ -6,6 +6,8 @@ cd "$(dirname "$0")/.."
 bin="$(pwd)/build/bin"
 fig="$(pwd)/book/figures"
 mkdir -p "$fig"
+# One command draws any error-against-time CSV (convergence.hpp's csv) to PNG.
+plot() { python3 "${bin%/build/bin}/tools/plot_convergence.py" "$@"; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -19,20 +21,15 @@ cd "$work"
 "$bin/intersections" --width 400 --height 300 --rays 20000 --out 1.5-intersections.png && cp 1.5-intersections.png "$fig/"
 "$bin/intersections" --mask --width 400 --height 300 --rays 20000 --out 1.5-mask.png && cp 1.5-mask.png "$fig/"
 # --- 1.6
-# Convergence plots: the chapter writes CSVs, tools/plot_convergence.py (matplotlib, in the venv
-# that tools/plot-setup.sh makes) draws them.
-if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
-  "$bin/monte-carlo" --max-log2n 22 --csv-dir . > /dev/null
-  mc_plot=("${bin%/build/bin}/build/plot-venv/bin/python" "${bin%/build/bin}/tools/plot_convergence.py")
-  "${mc_plot[@]}" 1.6-pi.csv -o "$fig/1.6-pi.png" --labels "dart throwing" \
-    --title 'Estimating $\pi$ by dart throwing'
-  "${mc_plot[@]}" 1.6-x2-uniform.csv 1.6-x2-linear.csv -o "$fig/1.6-x2.png" \
-    --labels 'uniform,$p(x)=x/2$' --title '$\int_0^2 x^2\,dx$: uniform and importance sampling'
-  "${mc_plot[@]}" 1.6-sinx2-uniform.csv 1.6-sinx2-importance.csv -o "$fig/1.6-sinx2.png" \
-    --labels 'uniform,$p(x)=3x^2$' --title '$\int_0^1 \sin(x^2)\,dx$: uniform and importance sampling'
-else
-  echo "make_figures: no matplotlib venv, skipping the 1.6 plots" >&2
-fi
+# Convergence plots: the chapter writes CSVs, tools/plot_convergence.py draws them (Debian's
+# python3-matplotlib, which tools/setup.sh installs).
+"$bin/monte-carlo" --max-log2n 22 --csv-dir . > /dev/null
+plot 1.6-pi.csv -o "$fig/1.6-pi.png" --labels "dart throwing" \
+  --title 'Estimating $\pi$ by dart throwing'
+plot 1.6-x2-uniform.csv 1.6-x2-linear.csv -o "$fig/1.6-x2.png" \
+  --labels 'uniform,$p(x)=x/2$' --title '$\int_0^2 x^2\,dx$: uniform and importance sampling'
+plot 1.6-sinx2-uniform.csv 1.6-sinx2-importance.csv -o "$fig/1.6-sinx2.png" \
+  --labels 'uniform,$p(x)=3x^2$' --title '$\int_0^1 \sin(x^2)\,dx$: uniform and importance sampling'
 # --- 3.1-3.3
 "$bin/rasterization" --width 320 --height 240 --out 3.1.png >/dev/null && cp 3.1-raster.png "$fig/"
 "$bin/rasterization" --width 64 --height 48 --triangles 0 --out 3.1-square.png >/dev/null && cp 3.1-square-diff.png "$fig/"
@@ -50,15 +47,10 @@ xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "$bin/importance" --out 5.3-importance.png >/dev/null && cp 5.3-importance.png "$fig/"
 "$bin/pathtrace" --scene "$fig/../../scenes/sky.yaml" --spp 256 --out 5.3-sky.png >/dev/null && cp 5.3-sky.png "$fig/"
 "$bin/pathtrace" --scene "$fig/../../scenes/textures.yaml" --spp 256 --out 2.2-textures.png >/dev/null && cp 2.2-textures.png "$fig/"
-if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
-  aa_plot=("${bin%/build/bin}/build/plot-venv/bin/python" "${bin%/build/bin}/tools/plot_convergence.py")
-  "${aa_plot[@]}" 5.1-antialiasing-{regular,uniform,stratified}.csv -o "$fig/5.1-rmse.png" \
-    --labels "regular,uniform,stratified" --title "Anti-aliasing: RMSE of the pixel integral"
-  "${aa_plot[@]}" 5.3-importance-{uniform,cosine,light,mixture}.csv -o "$fig/5.3-error.png" \
-    --labels "uniform,cosine,light,mixture" --title "Direct light: RMSE by sampling strategy"
-else
-  echo "make_figures: no matplotlib venv, skipping the 5.1 and 5.3 plots" >&2
-fi
+plot 5.1-antialiasing-{regular,uniform,stratified}.csv -o "$fig/5.1-rmse.png" \
+  --labels "regular,uniform,stratified" --title "Anti-aliasing: RMSE of the pixel integral"
+plot 5.3-importance-{uniform,cosine,light,mixture}.csv -o "$fig/5.3-error.png" \
+  --labels "uniform,cosine,light,mixture" --title "Direct light: RMSE by sampling strategy"
 # --- 6.2 (about 10 minutes on two cores: three 2048-spp mis references)
 for s in caustic-box tiny-light; do
   "$bin/bdpt" --scene $s --width 64 --height 64 --spp 32 --ref-spp 2048 --threads 2 --strategies 4 --out 6.2-$s.png >/dev/null
@@ -113,12 +105,7 @@ for m in naive nee mis; do
 done
 "$bin/results" --tile 80 --spp-sweep 1,8,64,512 --depth-spp 256 --conv-spp 512 --ref-spp 2048 >/dev/null
 cp 4.2-samples.png 4.2-depth.png "$fig/"
-if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
-  pt_plot=("${bin%/build/bin}/build/plot-venv/bin/python" "${bin%/build/bin}/tools/plot_convergence.py")
-  "${pt_plot[@]}" 2.3-{naive,nee,mis}.csv -o "$fig/2.3-error.png" --labels "naive,nee,mis" \
-    --title "Cornell box with a glass ball: RMSE against a 2048-spp reference"
-  "${pt_plot[@]}" 4.2-{naive,nee,mis}.csv -o "$fig/4.2-error.png" --labels "naive,nee,mis" \
-    --title "Figure 4.3's scene: RMSE against spp and seconds"
-else
-  echo "make_figures: no matplotlib venv, skipping the 2.3 and 4.2 plots" >&2
-fi
+plot 2.3-{naive,nee,mis}.csv -o "$fig/2.3-error.png" --labels "naive,nee,mis" \
+  --title "Cornell box with a glass ball: RMSE against a 2048-spp reference"
+plot 4.2-{naive,nee,mis}.csv -o "$fig/4.2-error.png" --labels "naive,nee,mis" \
+  --title "Figure 4.3's scene: RMSE against spp and seconds"

@@ -6,9 +6,11 @@ error against seconds, with a 1/sqrt(N) guide line (dashed) and, when the file h
 column, the standard error as a dotted line in each curve's colour. Any number of CSV files go
 on the same axes.
 
-    bash tools/plot-setup.sh     # once: makes build/plot-venv with matplotlib
-    build/plot-venv/bin/python tools/plot_convergence.py a.csv b.csv -o fig.png \
-        [--labels "uniform,importance"] [--column abs_error] [--title "..."]
+    python3 tools/plot_convergence.py a.csv b.csv -o fig.png \
+        [--labels "uniform,importance"] [--column abs_error] [--title "..."] [--width 400]
+
+It needs only Debian's python3-matplotlib (tools/setup.sh installs it); the image is --width
+pixels wide and half as high.
 
 The CSV's first line is `<n>,seconds,<columns...>`. The error plotted is --column, else
 abs_error, else the first column after seconds (rmse for a renderer). Rows whose error is not
@@ -56,7 +58,15 @@ def main():
     ap.add_argument("--width", type=float, default=400, help="image width in pixels (default 400)")
     a = ap.parse_args()
 
-    import matplotlib
+    try:
+        import matplotlib
+    except ImportError:
+        # The python3 first on PATH may be another install (pyenv, a venv) without matplotlib:
+        # Debian's own interpreter has the python3-matplotlib that tools/setup.sh installs.
+        debian = "/usr/bin/python3"
+        if os.path.realpath(sys.executable) != os.path.realpath(debian) and os.access(debian, os.X_OK):
+            os.execv(debian, [debian, os.path.abspath(__file__)] + sys.argv[1:])
+        sys.exit("error: python3 has no matplotlib: run 'bash tools/setup.sh' (Debian's python3-matplotlib)")
 
     matplotlib.use("Agg")  # no display needed
     import matplotlib.pyplot as plt

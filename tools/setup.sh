@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # Installs the Debian packages zraka needs, and does nothing when they are all present.
-# Usage: bash tools/setup.sh [--extras]   (--extras adds Embree for the BVH benchmark, pandoc for the book and python3-venv for its plots)
+# Usage: bash tools/setup.sh [--extras]   (--extras adds Embree for the BVH benchmark, pandoc for the book and python3-venv for tools/mitsuba-setup.sh)
 set -euo pipefail
 
 core=(build-essential cmake pkg-config
       libglm-dev libstb-dev libtinyexr-dev libglfw3-dev libepoxy-dev
       opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
       doctest-dev libyaml-cpp-dev libcli11-dev libfmt-dev
-      xvfb xauth libgl1-mesa-dri python3
+      xvfb xauth libgl1-mesa-dri python3 python3-matplotlib  # matplotlib: tools/plot_convergence.py
+      libassimp-dev  # PLY and glTF meshes (mesh_file.hpp)
       clang libclang-rt-14-dev)  # clang: tools/fuzz.sh (libFuzzer), which tools/test.sh runs
-extras=(libembree-dev pandoc python3-venv)  # python3-venv: tools/plot-setup.sh (book plots)
+extras=(libembree-dev pandoc python3-venv)  # python3-venv: tools/mitsuba-setup.sh
 
 want=("${core[@]}")
 [[ "${1:-}" == "--extras" ]] && want+=("${extras[@]}")
