@@ -17,6 +17,9 @@
 #include <zraka/named_scenes.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/render.hpp>
+#if defined(ZRAKA_COMPILED_MESH_FILE)  // built with assimp
+#include <zraka/mesh_file.hpp>
+#endif
 #if defined(ZRAKA_COMPILED_SCENE_FILE)  // built with yaml-cpp
 #include <zraka/scene_file.hpp>
 #endif

@@ -30,6 +30,14 @@
 #include <zraka/limits.hpp>
 #include <zraka/obj_file.hpp>
 #include <zraka/resources.hpp>
+// PLY and glTF meshes (mesh_file.hpp) where zraka::compiled was built with assimp, or header-only
+// with ZRAKA_WITH_ASSIMP (the program then links assimp); otherwise a mesh is OBJ only.
+#if defined(ZRAKA_COMPILED_MESH_FILE) || defined(ZRAKA_WITH_ASSIMP)
+#include <zraka/mesh_file.hpp>
+#define ZRAKA_SCENE_MESH_FILES 1
+#else
+#define ZRAKA_SCENE_MESH_FILES 0
+#endif
 #include <zraka/scene.hpp>
 #include <zraka/scene_registry.hpp>
 #include <zraka/tessellate.hpp>
@@ -44,6 +52,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -567,6 +576,8 @@ class scene_reader {
       keys_any(n, "materials");
       for (const auto& kv : n) {
         const std::string name = kv.first.Scalar();
+        if (name == "from-file")
+          fail(kv.first, "materials.from-file", "the name is reserved: a mesh's 'material: from-file' takes its file's material");
         const int index = material_index_.count(name) ? material_index_[name] : out_.sc.add_material(material{});
         if (!material_index_.count(name)) out_.sc.material_names.push_back(name);
         material_index_[name] = index;
@@ -871,7 +882,7 @@ class scene_reader {
     YAML::Node r;
     r["type"] = type;
     std::string label = path, mat_name;
-    const int mat = object_material(o, path, r, label, mat_name);
+    int mat = object_material(o, path, r, label, mat_name, type == "mesh");  // -1: from-file
     vec3 s(1);
     affine a;
     if (o["transform"]) a = transform(o["transform"], label + ".transform", s);
@@ -936,13 +947,33 @@ class scene_reader {
       if (type == "bezier") r["divs"] = divs;
       mesh msh;
       patch_set ps;
+      std::optional<texture> file_albedo;
+      std::string no_file_albedo = "an OBJ's materials (mtllib) are not read";
       try {
-        if (type == "mesh") msh = load_obj(file);
-        else ps = load_bpt(file);
+        if (type == "mesh") {
+#if ZRAKA_SCENE_MESH_FILES
+          mesh_file_contents c = load_mesh_file(file);
+          msh = std::move(c.geometry);
+          file_albedo = std::move(c.base_colour);
+          no_file_albedo = c.base_colour_problem;
+#else
+          if (file.extension() != ".obj")
+            throw error(file.string() + ": a '" + file.extension().string() + "' mesh needs assimp, and this program was " +
+                        "built without it (Debian's libassimp-dev; header-only, define ZRAKA_WITH_ASSIMP and link assimp)");
+          msh = load_obj(file);
+#endif
+        } else {
+          ps = load_bpt(file);
+        }
       } catch (const error& e) {  // name the file as the scene does, not by its full path
         std::string msg = e.what();
         if (msg.rfind(file.string(), 0) == 0) msg = o["file"].Scalar() + msg.substr(file.string().size());
         fail(o["file"], label + ".file", msg);
+      }
+      if (mat < 0 && !file_albedo) fail(o["material"], label + ".material", "from-file: " + o["file"].Scalar() + ": " + no_file_albedo);
+      if (mat < 0) {  // the file's base colour on a diffuse material
+        mat = sc.add_material(material::lambertian(*file_albedo));
+        sc.material_names.push_back("from-file (" + o["file"].Scalar() + ")");
       }
       if (type == "mesh") {
         add_triangles(msh.triangles.size(), o["file"], label + ".file");
@@ -967,13 +998,15 @@ class scene_reader {
 
   // The object's name (into r and the label used in messages) and its material's index.
   int object_material(const YAML::Node& o, const std::string& path, YAML::Node& r, std::string& label,
-                      std::string& mat_name) const {
+                      std::string& mat_name, bool from_file_allowed = false) const {
     if (o["name"]) {
       r["name"] = text(o["name"], path + ".name");
       label = path + " (" + o["name"].Scalar() + ")";
     }
     mat_name = "default";
     if (o["material"]) mat_name = text(o["material"], label + ".material");
+    if (mat_name == "from-file" && from_file_allowed) return -1;
+    if (mat_name == "from-file") fail(o["material"], label + ".material", "only a mesh takes its material from its file");
     const auto m = material_index_.find(mat_name);
     if (m == material_index_.end()) {
       std::string known;

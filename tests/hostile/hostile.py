@@ -95,6 +95,26 @@ def make_inputs():
     write("nan-mesh.yaml", "objects: [{type: mesh, file: nan.obj}]\n")
     write("vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n")
     write("vt-mesh.yaml", "objects: [{type: mesh, file: vt.obj}]\n")
+    # PLY and glTF (mesh_file.hpp, assimp): counts that a small file cannot hold, a FIFO as buffer.
+    ply_props = "".join(f"property float {c}\n" for c in "xyz")
+    write("huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\n" + ply_props +
+          "element face 1\nproperty list uchar uint vertex_indices\nend_header\n" + "\0" * 200)
+    write("huge-ply.yaml", "objects: [{type: mesh, file: huge.ply}]\n")
+    import base64
+    import json
+    tri = b"".join(__import__("struct").pack("<3f", *v) for v in [(0, 0, 0), (1, 0, 0), (0, 1, 0)])
+    def gltf(count, uri):
+        return json.dumps({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+                           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+                           "accessors": [{"bufferView": 0, "componentType": 5126, "count": count, "type": "VEC3",
+                                          "min": [0, 0, 0], "max": [1, 1, 0]}],
+                           "bufferViews": [{"buffer": 0, "byteLength": 36}],
+                           "buffers": [{"byteLength": 36, "uri": uri}]})
+    write("huge.gltf", gltf(2000000000, "data:application/octet-stream;base64," + base64.b64encode(tri).decode()))
+    write("huge-gltf.yaml", "objects: [{type: mesh, file: huge.gltf}]\n")
+    os.mkfifo("fifo.bin")
+    write("fifo-bin.gltf", gltf(3, "fifo.bin"))
+    write("fifo-bin.yaml", "objects: [{type: mesh, file: fifo-bin.gltf}]\n")
     write("far.yaml", "camera: {focus_distance: 1e308}\nobjects: [{type: sphere}]\n")
     # Many objects, about 1 MB: legal.
     write("spheres.yaml", "objects:\n" + "".join(f"  - {{type: sphere, center: [{i % 97}, {i % 89}, {i % 83}], radius: 0.25}}\n"
@@ -146,6 +166,12 @@ def cases(scenes, pathtrace):
          r"objects\[0\].file: nan.obj:2:3: vertex coordinate: 'nan' is not a finite number", None),
         ("texture index out of range", PT + ["--scene", "vt-mesh.yaml"], 1,
          r"vt.obj:5:7: refers to texture coordinate 2, but only 1 are defined before it", None),
+        ("a PLY header of 4e9 vertices in 300 bytes", PT + ["--scene", "huge-ply.yaml"], 1,
+         r"objects\[0\].file: huge.ply: the PLY header declares 4000000000 vertex elements, but the 200 bytes", None),
+        ("a glTF accessor of 2e9 vertices on 36 bytes", PT + ["--scene", "huge-gltf.yaml"], 1,
+         r"objects\[0\].file: huge.gltf: assimp cannot read it: .*out of range", None),
+        ("a glTF whose .bin buffer is a FIFO", [S, "--scene", "fifo-bin.yaml"], 1,
+         r"objects\[0\].file: fifo-bin.gltf: .*fifo.bin: is a FIFO \(named pipe\); only regular files are read", None),
         ("image plane at 1e308", PT + ["--scene", "far.yaml"], 1,
          r"camera.focus_distance: must be within \+-1e18 \(its square would overflow\), got 1e308", None),
         ("--threads 1000000", PT + ["--threads", "1000000"], 1,
