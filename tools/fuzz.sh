@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (fuzz/, clang) into build-fuzz/ and runs each for a given time.
 # Usage: bash tools/fuzz.sh [--seconds N] [--jobs J] [--keep-going] [target...]
-#   targets: scene obj bpt pfm png pathtrace (default: all); N seconds each (default 60);
+#   targets: scene obj bpt pfm png pathtrace (default: all), and mesh (PLY/glTF through
+#   assimp: only when named, see fuzz/README.md); N seconds each (default 60);
 #   J targets at a time (default 2, for 2 cores); --keep-going: libFuzzer's fork mode, which
 #   goes on after a crash, timeout or out-of-memory (for long campaigns) instead of stopping.
 # Each corpus (build-fuzz/corpus/<target>/) starts from the seed inputs (fuzz/CMakeLists.txt)
@@ -17,7 +18,7 @@ while [[ $# -gt 0 ]]; do
     --seconds) seconds=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
     --keep-going) keep_going=1; shift ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
     -*) echo "fuzz.sh: unknown option $1" >&2; exit 1 ;;
     *) targets+=("$1"); shift ;;
   esac
@@ -25,7 +26,7 @@ done
 all=(scene obj bpt pfm png pathtrace)
 [[ ${#targets[@]} -eq 0 ]] && targets=("${all[@]}")
 for t in "${targets[@]}"; do
-  [[ " ${all[*]} " == *" $t "* ]] || { echo "fuzz.sh: unknown target '$t' (${all[*]})" >&2; exit 1; }
+  [[ " ${all[*]} mesh " == *" $t "* ]] || { echo "fuzz.sh: unknown target '$t' (${all[*]})" >&2; exit 1; }
 done
 [[ "$seconds" =~ ^[0-9]+$ && "$seconds" -ge 1 ]] || { echo "fuzz.sh: --seconds needs a positive whole number" >&2; exit 1; }
 
