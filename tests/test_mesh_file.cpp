@@ -6,6 +6,8 @@
 #include <zraka/resources.hpp>
 #include <zraka/scene_file.hpp>
 
+#include "error_of.hpp"
+
 #include <doctest/doctest.h>
 
 #include <fstream>
@@ -16,14 +18,6 @@ using namespace zraka;
 namespace fs = std::filesystem;
 
 namespace {
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 fs::path meshes() { return resource_root() / "scenes" / "meshes"; }
 std::string text_of(const fs::path& p) {
   std::ifstream in(p);

@@ -4,6 +4,8 @@
 #include <zraka/obj_file.hpp>
 #include <zraka/resources.hpp>
 
+#include "error_of.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -14,14 +16,6 @@ using namespace zraka;
 namespace fs = std::filesystem;
 
 namespace {
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 const std::string vertices = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 1\n"
                              "vn 0 0 1\nvn 0 0 2\n";
 }  // namespace
