@@ -134,6 +134,31 @@ TEST_CASE("mesh files: a glTF material that is more than a base colour is refuse
   fs::remove_all(dir);
 }
 
+TEST_CASE("mesh files: a glTF node's transform moves points, turns normals and keeps the winding") {
+  const fs::path dir = fs::temp_directory_path() / "zraka-test-mesh-node";
+  fs::create_directories(dir);
+  std::string t = text_of(meshes() / "quad.gltf");
+  const std::string grid = (resource_root() / "scenes" / "uv-grid.png").string();
+  t.replace(t.find("../uv-grid.png"), 14, grid);
+  // A mirror in x (scale -1), then a quarter turn about y (quaternion x y z w), then a move.
+  const std::size_t at = t.find("\"mesh\": 0");
+  REQUIRE(at != std::string::npos);
+  t.insert(at, "\"scale\": [-1, 1, 1], \"rotation\": [0, 0.70710678, 0, 0.70710678], \"translation\": [1, 2, 3], ");
+  std::ofstream(dir / "moved.gltf") << t;
+  const mesh m = read_mesh_file(dir / "moved.gltf");
+  const mesh q = read_mesh_file(meshes() / "quad.obj");
+  REQUIRE(m.triangle_count() == q.triangle_count());
+  for (std::size_t i = 0; i < q.positions.size(); ++i) {
+    const vec3 p = q.positions[i], mirrored(-p.x, p.y, p.z);
+    const vec3 turned(mirrored.z, mirrored.y, -mirrored.x);  // +90 degrees about y
+    CHECK(glm::length(m.positions[i] - (turned + vec3(1, 2, 3))) < 1e-6);
+    CHECK(glm::length(m.normals[i] - vec3(1, 0, 0)) < 1e-6);  // (0, 0, 1) mirrored stays, turned to +x
+  }
+  for (std::size_t i = 0; i < m.triangle_count(); ++i)  // the winding follows the mirror
+    CHECK(glm::dot(m.triangle(i).normal(), m.normals[m.triangles[i][0]]) > 0);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("scene files: meshes by extension, and material: from-file") {
   const loaded_scene g = load_scene_file(resource_root() / "scenes" / "gltf-model.yaml");
   bool textured = false;
