@@ -47,6 +47,7 @@ xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "$bin/importance" --out 5.3-importance.png >/dev/null && cp 5.3-importance.png "$fig/"
 "$bin/pathtrace" --scene "$fig/../../scenes/sky.yaml" --spp 256 --out 5.3-sky.png >/dev/null && cp 5.3-sky.png "$fig/"
 "$bin/pathtrace" --scene "$fig/../../scenes/textures.yaml" --spp 256 --out 2.2-textures.png >/dev/null && cp 2.2-textures.png "$fig/"
+"$bin/pathtrace" --scene "$fig/../../scenes/gltf-model.yaml" --out 4.1-gltf.png >/dev/null && cp 4.1-gltf.png "$fig/"
 plot 5.1-antialiasing-{regular,uniform,stratified}.csv -o "$fig/5.1-rmse.png" \
   --labels "regular,uniform,stratified" --title "Anti-aliasing: RMSE of the pixel integral"
 plot 5.3-importance-{uniform,cosine,light,mixture}.csv -o "$fig/5.3-error.png" \
