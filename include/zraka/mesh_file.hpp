@@ -65,9 +65,10 @@ ZRAKA_MESH_FILE_FN mesh_file_contents load_mesh_file(const std::filesystem::path
 inline mesh read_mesh_file(const std::filesystem::path& path) { return load_mesh_file(path).geometry; }
 
 namespace detail {
-// A PLY header's declared counts against the bytes that follow it: each element of an ASCII
-// file takes at least two bytes per property ("0 "), of a binary one the sum of its scalar
-// sizes (a list at least its count). Throws "NAME: ..." if a count cannot fit, or exceeds limits().
+// A PLY header, strictly (known lines only), and its declared counts against the bytes that
+// follow it: each element of an ASCII file takes at least two bytes per property ("0 "), of a
+// binary one the sum of its scalar sizes (a list at least its count). Throws "NAME: ..." if the
+// header is malformed, or a count cannot fit or exceeds limits().
 ZRAKA_MESH_FILE_FN void check_ply_counts(std::string_view bytes, const std::string& name);
 }  // namespace detail
 
@@ -95,14 +96,9 @@ namespace zraka {
 namespace detail {
 
 ZRAKA_MESH_FILE_FN void check_ply_counts(std::string_view bytes, const std::string& name) {
-  const std::size_t end = bytes.find("end_header");
-  if (bytes.substr(0, 3) != "ply" || end == std::string_view::npos) return;  // assimp says what is wrong
-  std::size_t body = bytes.find('\n', end);
-  body = body == std::string_view::npos ? bytes.size() : body + 1;
-  const std::uint64_t available = bytes.size() - body;
-  std::istringstream header{std::string(bytes.substr(0, end))};
-  std::string line;
-  bool ascii = true;
+  if (bytes.substr(0, 3) != "ply" && bytes.substr(0, 3) != "PLY") return;  // assimp names what it is not
+  // The header, line by line, strictly: assimp's own parser loops forever on some broken headers
+  // (an end_header with a stray byte), so only a header of known lines reaches it.
   struct element {
     std::string name;
     std::uint64_t count = 0, min_bytes = 0;
@@ -111,33 +107,56 @@ ZRAKA_MESH_FILE_FN void check_ply_counts(std::string_view bytes, const std::stri
   auto scalar_size = [](const std::string& t) -> std::uint64_t {
     if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
     if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
     if (t == "double" || t == "float64") return 8;
-    return 4;  // int, uint, float and their sized names
+    return 0;  // not a PLY type
   };
-  while (std::getline(header, line)) {
+  bool ascii = true, ended = false;
+  std::size_t pos = 0, body = bytes.size();
+  for (int line_no = 1; pos < bytes.size() && !ended; ++line_no) {
+    std::size_t eol = bytes.find('\n', pos);
+    if (eol == std::string_view::npos) eol = bytes.size();
+    std::string line(bytes.substr(pos, eol - pos));
+    pos = eol + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    auto fail = [&](const std::string& what) {
+      throw error(name + ":" + std::to_string(line_no) + ": PLY header: " + what);
+    };
     std::istringstream words(line);
-    std::string key;
-    words >> key;
-    if (key == "format") {
-      std::string f;
-      words >> f;
-      ascii = f == "ascii";
+    std::vector<std::string> w;
+    for (std::string x; words >> x;) w.push_back(x);
+    const std::string key = w.empty() ? "" : w[0];
+    if (line_no == 1) {
+      if (line != "ply" && line != "PLY") fail("the first line must be 'ply'");
+    } else if (key == "comment" || key == "obj_info") {
+    } else if (key == "format") {
+      if (w.size() != 3 || (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
+        fail("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+      ascii = w[1] == "ascii";
     } else if (key == "element") {
+      if (w.size() != 3) fail("expected 'element NAME COUNT'");
       element e;
-      std::string count;
-      words >> e.name >> count;
-      const auto [p, ec] = std::from_chars(count.data(), count.data() + count.size(), e.count);
-      if (ec != std::errc() || p != count.data() + count.size())
-        throw error(name + ": the PLY header's element '" + e.name + "' has the count '" + count +
-                    "', not a whole number of 64 bits");
+      e.name = w[1];
+      const auto [p, ec] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count);
+      if (ec != std::errc() || p != w[2].data() + w[2].size())
+        fail("the element '" + e.name + "' has the count '" + w[2] + "', not a whole number of 64 bits");
       elements.push_back(e);
-    } else if (key == "property" && !elements.empty()) {
-      std::string type, count_type;
-      words >> type;
-      if (type == "list") words >> count_type;
-      elements.back().min_bytes += ascii ? 2 : scalar_size(type == "list" ? count_type : type);
+    } else if (key == "property") {
+      if (elements.empty()) fail("a property before any element");
+      const bool list = w.size() == 5 && w[1] == "list";
+      if (!(w.size() == 3 || list)) fail("expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
+      if (scalar_size(w[1 + list]) == 0 || (list && scalar_size(w[3]) == 0))
+        fail("unknown type in '" + line + "'");
+      elements.back().min_bytes += ascii ? 2 : scalar_size(w[1 + list]);
+    } else if (line == "end_header") {
+      ended = true;
+      body = pos;
+    } else {
+      fail("unknown line '" + line.substr(0, 40) + "'");
     }
   }
+  if (!ended) throw error(name + ": PLY header: no 'end_header' line");
+  const std::uint64_t available = bytes.size() - std::min(body, bytes.size());
   std::uint64_t left = available;  // what the elements before this one leave, at the least
   for (const element& e : elements) {
     if (e.count != 0 && e.min_bytes != 0 && e.count > left / e.min_bytes)
