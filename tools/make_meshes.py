@@ -227,6 +227,11 @@ def main():
     far = json.loads(json.dumps(doc))
     far["nodes"][0]["scale"] = [1e30, 1, 1]
     bad("far-node.gltf", gltf_text(far), "vertex 1 is (1, 0, 0) and its node's transform puts it")
+    mime = json.loads(json.dumps(doc))
+    mime["images"] = [{"uri": "../../../../scenes/uv-grid.png", "mimeType": "im\u00fepng"}]
+    mime["textures"] = [{"source": 0}]
+    mime["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
+    bad("mime-type-without-slash.gltf", gltf_text(mime), "an image's mimeType")
     bad("truncated.gltf", gltf_text(doc)[:200], "assimp cannot read it")
     g = glb(*gltf(s, embed_image=png))
     bad("truncated.glb", g[: len(g) // 2], "assimp cannot read it")

@@ -70,6 +70,10 @@ namespace detail {
 // binary one the sum of its scalar sizes (a list at least its count). Throws "NAME: ..." if the
 // header is malformed, or a count cannot fit or exceeds limits().
 ZRAKA_MESH_FILE_FN void check_ply_counts(std::string_view bytes, const std::string& name);
+// Guards against a crash in assimp 5.2 (Debian's): an image whose "mimeType" has no '/' makes
+// its glTF importer read address 1 (found by fuzz_mesh). Every JSON string is decoded (escapes
+// too, as assimp's parser does) and each "mimeType" string value must hold a '/'.
+ZRAKA_MESH_FILE_FN void check_gltf_json(std::string_view json, const std::string& name);
 }  // namespace detail
 
 }  // namespace zraka
@@ -170,6 +174,39 @@ ZRAKA_MESH_FILE_FN void check_ply_counts(std::string_view bytes, const std::stri
     if (e.name == "face" && e.count > limits().triangles)
       throw error(name + ": " + std::to_string(e.count) + " faces, more than the limit of " +
                   std::to_string(limits().triangles) + " " + raise_hint("triangles"));
+  }
+}
+
+ZRAKA_MESH_FILE_FN void check_gltf_json(std::string_view json, const std::string& name) {
+  bool previous_is_mime_key = false;  // the last string was the key "mimeType"
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    if (json[i] == ':') continue;
+    if (json[i] != '"') {
+      if (json[i] != ' ' && json[i] != '\n' && json[i] != '\r' && json[i] != '\t') previous_is_mime_key = false;
+      continue;
+    }
+    std::string text;  // the decoded string (code points above 0x7f kept as a marker byte)
+    for (++i; i < json.size() && json[i] != '"'; ++i) {
+      if (json[i] != '\\' || i + 1 >= json.size()) {
+        text += json[i];
+        continue;
+      }
+      const char e = json[++i];
+      if (e == 'u' && i + 4 < json.size()) {
+        unsigned code = 0;
+        const auto [p, ec] = std::from_chars(json.data() + i + 1, json.data() + i + 5, code, 16);
+        text += (ec == std::errc() && p == json.data() + i + 5 && code < 0x80) ? char(code) : '\x80';
+        i += 4;
+      } else {
+        text += e == 'n' ? '\n' : e == 't' ? '\t' : e == 'r' ? '\r' : e == 'b' ? '\b' : e == 'f' ? '\f' : e;
+      }
+    }
+    std::size_t k = i + 1;
+    while (k < json.size() && (json[k] == ' ' || json[k] == '\n' || json[k] == '\r' || json[k] == '\t')) ++k;
+    const bool is_key = k < json.size() && json[k] == ':';
+    if (!is_key && previous_is_mime_key && text.find('/') == std::string::npos)
+      throw error(name + ": an image's mimeType '" + text.substr(0, 40) + "' is not a type/subtype (such as image/png)");
+    previous_is_mime_key = is_key && text == "mimeType";
   }
 }
 
@@ -292,6 +329,12 @@ ZRAKA_MESH_FILE_FN mesh_file_contents load_mesh_file(const std::filesystem::path
   const std::string bytes = read_input_file(path);  // a regular file within the size limit
   if (bytes.empty()) throw error(name + ": the file is empty");
   if (ext == ".ply") detail::check_ply_counts(bytes, name);
+  if (ext == ".gltf") detail::check_gltf_json(bytes, name);
+  if (ext == ".glb" && bytes.size() >= 20) {  // the JSON chunk: its length at byte 12, its data from 20
+    std::uint32_t length = 0;
+    for (int b = 0; b < 4; ++b) length |= std::uint32_t(std::uint8_t(bytes[std::size_t(12 + b)])) << (8 * b);
+    detail::check_gltf_json(std::string_view(bytes).substr(20, length), name);
+  }
 
   Assimp::Importer importer;
   auto* io = new detail::bounded_io_system;  // the importer owns it
