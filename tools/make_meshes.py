@@ -193,7 +193,9 @@ def main():
         "declares 4000000000 vertex elements")
     bad("count-overflow.ply", ply_header("ascii", 1, 1).replace("vertex 1", "vertex 99999999999999999999999")
         + "0 0 0 0 0 1 0 0\n3 0 0 0\n", "not a whole number of 64 bits")
-    bad("broken-end-header.ply", good.replace("end_header", "end\xe3_header"), ":15: PLY header: unknown line 'end")
+    bad("broken-end-header.ply", good.replace("end_header", "end\x7f_header"), ":15: PLY header: a byte that is not printable ASCII (127)")
+    bad("end-header-at-eof.ply", good[: good.index("end_header") + 10], ":15: PLY header: 'end_header' must end its line")
+    bad("header-not-ascii.ply", good.replace("comment made", "comment \x01 made"), ":3: PLY header: a byte that is not printable ASCII (1)")
     bad("no-end-header.ply", good[: good.index("end_header")], "PLY header: no 'end_header' line")
     bad("bad-property-type.ply", good.replace("property float u", "property quad u"), ":11: PLY header: unknown type")
     bad("wrong-count.ply", ply_ascii(t, ply_header("ascii", 2, 1)), "face 0 has 0 corners")
@@ -234,7 +236,10 @@ def main():
     bad("mime-type-without-slash.gltf", gltf_text(mime), "an image's mimeType")
     bad("truncated.gltf", gltf_text(doc)[:200], "assimp cannot read it")
     g = glb(*gltf(s, embed_image=png))
-    bad("truncated.glb", g[: len(g) // 2], "assimp cannot read it")
+    bad("truncated.glb", g[: len(g) // 2], "the GLB header declares 19232 bytes, the file has 9616")
+    big = bytearray(g)
+    struct.pack_into("<I", big, 12, 1919247471)  # the JSON chunk's length
+    bad("huge-chunk.glb", bytes(big), "GLB chunk 0 declares 1919247471 bytes")
     short = json.loads(json.dumps(doc))
     short["buffers"][0]["byteLength"] = len(buf) * 1000
     bad("buffer-too-short.gltf", gltf_text(short), "assimp cannot read it")

@@ -87,6 +87,7 @@ ZRAKA_MESH_FILE_FN void check_gltf_json(std::string_view json, const std::string
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <memory>
@@ -100,7 +101,9 @@ namespace zraka {
 namespace detail {
 
 ZRAKA_MESH_FILE_FN void check_ply_counts(std::string_view bytes, const std::string& name) {
-  if (bytes.substr(0, 3) != "ply" && bytes.substr(0, 3) != "PLY") return;  // assimp names what it is not
+  // assimp takes the magic number in any case ("Ply"); anything else it refuses by name itself.
+  if (bytes.size() < 3 || std::tolower(bytes[0]) != 'p' || std::tolower(bytes[1]) != 'l' || std::tolower(bytes[2]) != 'y')
+    return;
   // The header, line by line, strictly: assimp's own parser loops forever on some broken headers
   // (an end_header with a stray byte), so only a header of known lines reaches it.
   struct element {
@@ -126,6 +129,8 @@ ZRAKA_MESH_FILE_FN void check_ply_counts(std::string_view bytes, const std::stri
     auto fail = [&](const std::string& what) {
       throw error(name + ":" + std::to_string(line_no) + ": PLY header: " + what);
     };
+    for (const char c : line)
+      if (!((c >= ' ' && c <= '~') || c == '\t')) fail("a byte that is not printable ASCII (" + std::to_string(int(std::uint8_t(c))) + ")");
     std::istringstream words(line);
     std::vector<std::string> w;
     for (std::string x; words >> x;) w.push_back(x);
@@ -153,6 +158,7 @@ ZRAKA_MESH_FILE_FN void check_ply_counts(std::string_view bytes, const std::stri
         fail("unknown type in '" + line + "'");
       elements.back().min_bytes += ascii ? 2 : scalar_size(w[1 + list]);
     } else if (line == "end_header") {
+      if (eol == bytes.size()) fail("'end_header' must end its line");  // assimp hangs on some files without
       ended = true;
       body = pos;
     } else {
@@ -207,6 +213,34 @@ ZRAKA_MESH_FILE_FN void check_gltf_json(std::string_view json, const std::string
     if (!is_key && previous_is_mime_key && text.find('/') == std::string::npos)
       throw error(name + ": an image's mimeType '" + text.substr(0, 40) + "' is not a type/subtype (such as image/png)");
     previous_is_mime_key = is_key && text == "mimeType";
+  }
+}
+
+// A GLB's header and chunk lengths against the file's size (assimp allocates what they declare:
+// 1.9 GB from a 1.5 kB file, found by fuzz_mesh), then its JSON chunk as check_gltf_json.
+inline void check_glb(std::string_view bytes, const std::string& name) {
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t x = 0;
+    for (std::size_t b = 0; b < 4; ++b) x |= std::uint32_t(std::uint8_t(bytes[at + b])) << (8 * b);
+    return x;
+  };
+  if (bytes.size() < 20 || bytes.substr(0, 4) != "glTF") return;  // assimp names what it is not
+  if (u32(4) != 2) throw error(name + ": GLB version " + std::to_string(u32(4)) + "; zraka reads glTF 2.0");
+  if (u32(8) != bytes.size())
+    throw error(name + ": the GLB header declares " + std::to_string(u32(8)) + " bytes, the file has " +
+                std::to_string(bytes.size()));
+  std::size_t at = 12;
+  for (int chunk = 0; at < bytes.size(); ++chunk) {
+    if (bytes.size() - at < 8) throw error(name + ": GLB chunk " + std::to_string(chunk) + " is cut short");
+    const std::uint64_t length = u32(at);
+    if (length > bytes.size() - at - 8)
+      throw error(name + ": GLB chunk " + std::to_string(chunk) + " declares " + std::to_string(length) +
+                  " bytes, but only " + std::to_string(bytes.size() - at - 8) + " follow");
+    if (chunk == 0) {
+      if (bytes.substr(at + 4, 4) != "JSON") throw error(name + ": the first GLB chunk is not JSON");
+      check_gltf_json(bytes.substr(at + 8, length), name);
+    }
+    at += 8 + length;
   }
 }
 
@@ -330,11 +364,7 @@ ZRAKA_MESH_FILE_FN mesh_file_contents load_mesh_file(const std::filesystem::path
   if (bytes.empty()) throw error(name + ": the file is empty");
   if (ext == ".ply") detail::check_ply_counts(bytes, name);
   if (ext == ".gltf") detail::check_gltf_json(bytes, name);
-  if (ext == ".glb" && bytes.size() >= 20) {  // the JSON chunk: its length at byte 12, its data from 20
-    std::uint32_t length = 0;
-    for (int b = 0; b < 4; ++b) length |= std::uint32_t(std::uint8_t(bytes[std::size_t(12 + b)])) << (8 * b);
-    detail::check_gltf_json(std::string_view(bytes).substr(20, length), name);
-  }
+  if (ext == ".glb") detail::check_glb(bytes, name);
 
   Assimp::Importer importer;
   auto* io = new detail::bounded_io_system;  // the importer owns it
