@@ -14,9 +14,11 @@
 //
 // Strict like the OBJ reader: every coordinate finite and within max_coordinate, every index in
 // range, counts within limits(), and every error "FILE: what" (with assimp's own words when it
-// is assimp that refuses). A PLY header's counts are checked against the file's size before
-// assimp reads it, so a small file cannot declare a giant allocation; every file assimp opens
-// (a glTF's .bin buffers too) is a regular file within limits().file_bytes.
+// is assimp that refuses). Before assimp reads a file, zraka checks what assimp trusts: a PLY
+// header line by line and its counts against the file's size, a GLB's chunk lengths, a glTF's
+// image mimeTypes (fuzz_mesh found assimp 5.2 hanging, allocating 1.9 GB or crashing on each),
+// so a small file cannot declare a giant allocation; every file assimp opens (a glTF's .bin
+// buffers too) is a regular file within limits().file_bytes.
 //
 // Compiled once into zraka::compiled where zraka was built with assimp (ZRAKA_COMPILED_MESH_FILE,
 // as scene_file.hpp's ZRAKA_COMPILED_SCENE_FILE): then this header only declares. Header-only,
