@@ -16,20 +16,33 @@ inline bool is_scene_path(const std::string& arg) {
   return arg.ends_with(".yaml") || arg.ends_with(".yml") || arg.find('/') != std::string::npos;
 }
 
-// A path is looked for as given, then under the resource root; a typo is a missing file named
-// as the user wrote it, not a resource-root problem.
-inline loaded_scene load_scene_argument(const std::string& arg) {
+namespace detail {
+// Compiled once with the scene-file reader (ZRAKA_SCENE_FILE_FN, scene_file.hpp); the resource root
+// is the program's, passed in.
+ZRAKA_SCENE_FILE_FN loaded_scene load_scene_argument_in(const std::string& arg, const std::filesystem::path& root)
+#if ZRAKA_SCENE_FILE_DEFINITIONS
+{
   if (is_scene_path(arg)) {
     const std::filesystem::path p(arg);
     std::error_code ec;
-    if (!std::filesystem::exists(p, ec) && (p.is_absolute() || !std::filesystem::exists(resource_root() / p, ec)))
+    if (!std::filesystem::exists(p, ec) && (p.is_absolute() || !std::filesystem::exists(root / p, ec)))
       throw error("scene file not found: " + arg);
-    return load_scene_file(p);
+    return load_scene_file_in(p, {}, root);
   }
   const named_scene* n = find_named_scene(arg);
   if (!n) throw error("unknown scene '" + arg + "' (" + named_scene_list() + ", or a .yaml file)");
   if (n->build) return loaded_scene{n->build(), {}};
-  return load_scene_file("scenes/" + std::string(n->name) + ".yaml");
+  return load_scene_file_in("scenes/" + std::string(n->name) + ".yaml", {}, root);
+}
+#else
+    ;
+#endif
+}  // namespace detail
+
+// A path is looked for as given, then under the resource root; a typo is a missing file named
+// as the user wrote it, not a resource-root problem.
+inline loaded_scene load_scene_argument(const std::string& arg) {
+  return detail::load_scene_argument_in(arg, resource_root());
 }
 
 }  // namespace zraka
