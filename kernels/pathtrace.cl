@@ -606,7 +606,8 @@ float area_to_solid_angle_pdf(float pdf_area, float distance2, float cos_light) 
 float3 facing(const hit_t* h) { return h->front_face ? h->normal : -h->normal; }
 
 #ifdef HAS_CHECKER
-float3 checker(float3 a, float3 b, float cell, const hit_t* h) {  // texture.hpp: the axis nearest the normal is dropped
+// texture.hpp's checker: the axis nearest the normal is dropped.
+float3 checker(float3 a, float3 b, float cell, const hit_t* h) {
   const float3 an = fabs(h->normal);
   const int drop = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
   const float p[3] = {h->p.x, h->p.y, h->p.z};
@@ -635,7 +636,8 @@ float3 lookup_bilinear(global const texture_t* t, global const float4* texels, f
   const float x = u * (float)t->width - 0.5f, y = (1.0f - v) * (float)t->height - 0.5f;
   const float x0 = floor(x), y0 = floor(y), fx = x - x0, fy = y - y0;
   const float3 top = (1.0f - fx) * texel(t, texels, x0, y0) + fx * texel(t, texels, x0 + 1.0f, y0);
-  const float3 bottom = (1.0f - fx) * texel(t, texels, x0, y0 + 1.0f) + fx * texel(t, texels, x0 + 1.0f, y0 + 1.0f);
+  const float3 bottom =
+      (1.0f - fx) * texel(t, texels, x0, y0 + 1.0f) + fx * texel(t, texels, x0 + 1.0f, y0 + 1.0f);
   return (1.0f - fy) * top + fy * bottom;
 }
 // [end]
@@ -947,7 +949,8 @@ float3 microfacet_f_cos(global const material_t* m, const hit_t* h, float3 wo, f
   if (m->kind == KIND_ROUGH_CONDUCTOR) return rough_conductor_f(m, a, lo, li) * fabs(li.z);
 #endif
 #ifdef HAS_ROUGH_DIELECTRIC
-  if (m->kind == KIND_ROUGH_DIELECTRIC) return (float3)(rough_dielectric_f(a, rough_eta(m, h), lo, li) * fabs(li.z));
+  if (m->kind == KIND_ROUGH_DIELECTRIC)
+    return (float3)(rough_dielectric_f(a, rough_eta(m, h), lo, li) * fabs(li.z));
 #endif
   return (float3)(0.0f);
 }
@@ -1101,15 +1104,17 @@ bool scatter(global const material_t* m, float3 d, const hit_t* h, stream_t* g, 
 // [listing cl-environment]
 // The map's frame turns by the rotation about +y; (u, v) = (phi / 2 pi, theta / pi) as to_uv().
 float3 env_to_local(const environment_t* e, float3 w) {
-  return (float3)(e->cos_rotation * w.x - e->sin_rotation * w.z, w.y, e->sin_rotation * w.x + e->cos_rotation * w.z);
+  const float c = e->cos_rotation, s = e->sin_rotation;
+  return (float3)(c * w.x - s * w.z, w.y, s * w.x + c * w.z);
 }
 float3 env_to_world(const environment_t* e, float3 l) {
-  return (float3)(e->cos_rotation * l.x + e->sin_rotation * l.z, l.y, -e->sin_rotation * l.x + e->cos_rotation * l.z);
+  const float c = e->cos_rotation, s = e->sin_rotation;
+  return (float3)(c * l.x + s * l.z, l.y, -s * l.x + c * l.z);
 }
 float2 env_uv(float3 l) {
   float phi = atan2(l.x, -l.z);
   if (phi < 0.0f) phi += 2.0f * PI_F;
-  const float theta = atan2(sqrt(l.x * l.x + l.z * l.z), l.y);
+  const float theta = atan2(hypot(l.x, l.z), l.y);  // hypot: no underflow of a tiny sin
   return (float2)(fmin(phi / (2.0f * PI_F), 1.0f), fmin(theta / PI_F, 1.0f));
 }
 // The radiance seen looking along w: bilinear, wrapping in phi, clamped at the poles.
@@ -1128,7 +1133,8 @@ float3 env_radiance(const scene_t* sc, float3 w) {
 }
 
 // distribution_1d::sample on the packed bins f[n] and cdf[n + 1] (gpu_scene.hpp's env_tables).
-float sample_1d(global const float* f, global const float* cdf, float total, int n, float u, float* pdf, int* bin) {
+float sample_1d(global const float* f, global const float* cdf, float total, int n, float u, float* pdf,
+                int* bin) {
   const float target = clamp_unit(u) * total;
   int lo = 0, hi = n + 1;  // upper_bound: the first entry of the CDF above target
   while (lo < hi) {
@@ -1163,23 +1169,26 @@ float3 env_sample(const scene_t* sc, float2 u, float* pdf) {
   global const float* T = sc->env_tables;
   float pv = 0.0f, pu = 0.0f;
   int row = 0, col = 0;
-  const float v = sample_1d(ENV_MARGINAL_F(e, T), ENV_MARGINAL_CDF(e, T), e.marginal_total, e.height, u.y, &pv, &row);
+  const float v =
+      sample_1d(ENV_MARGINAL_F(e, T), ENV_MARGINAL_CDF(e, T), e.marginal_total, e.height, u.y, &pv, &row);
   const float x = sample_1d(ENV_ROW_F(e, T, row), ENV_ROW_CDF(e, T, row), ENV_ROW_TOTAL(e, T)[row], e.width, u.x,
                             &pu, &col);
-  const float theta = PI_F * v, phi = 2.0f * PI_F * x, sin_theta = sin(theta), p_uv = pv * pu;
+  // sinpi(v) = sin(pi v) without pi's rounding in float: next to a pole sin(PI_F v) would be
+  // off by 1e-7 absolute, which is tens of per cent of the density there.
+  const float sin_theta = sinpi(v), p_uv = pv * pu;
   if (!(sin_theta > 0.0f) || !(p_uv > 0.0f)) {
     *pdf = 0.0f;
     return (float3)(0.0f);
   }
   *pdf = p_uv / (2.0f * PI_F * PI_F * sin_theta);
-  return env_to_world(&e, (float3)(sin(phi) * sin_theta, cos(theta), -cos(phi) * sin_theta));
+  return env_to_world(&e, (float3)(sinpi(2.0f * x) * sin_theta, cospi(v), -cospi(2.0f * x) * sin_theta));
 }
 // environment_map::pdf: the density of env_sample for direction w.
 float env_pdf(const scene_t* sc, float3 w) {
   const environment_t e = *sc->env;
   if (e.is_constant) return 1.0f / (4.0f * PI_F);
   const float3 l = env_to_local(&e, w);
-  const float sin_theta = sqrt(l.x * l.x + l.z * l.z);
+  const float sin_theta = hypot(l.x, l.z);
   if (!(sin_theta > 0.0f)) return 0.0f;
   const float2 uv = env_uv(l);
   global const float* T = sc->env_tables;
@@ -1532,3 +1541,36 @@ kernel void layout(global uint* out) {
                            SIZE_AND(texture_t, cell), SIZE_AND(environment_t, cos_rotation)};
   for (int i = 0; i < 36; ++i) out[i] = values[i];
 }
+
+#ifdef PROBES
+// For tests/test_realtime.cpp (built with -DPROBES, never in a render): the environment's and the
+// image texture's functions on given numbers, to hold against environment.hpp and texture.hpp
+// at the extremes (the poles, u next to 1, empty bins, NaN and huge texture coordinates).
+#ifdef HAS_ENVIRONMENT
+// in[i]: (u.x, u.y) for env_sample; in[n + i]: a direction for env_pdf and env_radiance.
+// out[3i] = (w, pdf) sampled; out[3i + 1].x = env_pdf(w); out[3i + 2] = (radiance at in[n + i], pdf there).
+kernel void probe_environment(global const environment_t* env, global const float* env_tables,
+                              global const float4* texels, global const float4* in, global float4* out, int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  scene_t sc;
+  sc.env = env;
+  sc.env_tables = env_tables;
+  sc.texels = texels;
+  float pdf = 0.0f;
+  const float3 w = env_sample(&sc, in[i].xy, &pdf);
+  out[3 * i] = (float4)(w, pdf);
+  out[3 * i + 1] = (float4)(env_pdf(&sc, w), 0.0f, 0.0f, 0.0f);
+  const float3 d = in[n + i].xyz;
+  out[3 * i + 2] = (float4)(env_radiance(&sc, d), env_pdf(&sc, d));
+}
+#endif
+#ifdef HAS_IMAGE_TEXTURES
+// out[i] = lookup_bilinear(textures[0], uv[i])
+kernel void probe_image(global const texture_t* t, global const float4* texels, global const float2* uv,
+                        global float4* out, int n) {
+  const int i = get_global_id(0);
+  if (i < n) out[i] = (float4)(lookup_bilinear(t, texels, uv[i]), 0.0f);
+}
+#endif
+#endif

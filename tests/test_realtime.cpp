@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -82,59 +83,52 @@ scene mesh_light_scene() {
   return sc;
 }
 
+// A 6 x 6 floor at y = 0 (normal up), a square lamp of side `side` facing down at height y, a
+// sky colour and the camera: the stage of the scenes below.
+scene stage(const material& floor, double side, double y, rgb lamp, rgb sky, vec3 eye, vec3 at) {
+  scene sc;
+  sc.add(quad{{-3, 0, -3}, {0, 0, 6}, {6, 0, 0}}, sc.add_material(floor));
+  sc.add(quad{{-side / 2, y, -side / 2}, {side, 0, 0}, {0, 0, side}}, sc.add_material(material::emitter(lamp)));
+  sc.background = sky;
+  sc.camera.position = eye;
+  sc.camera.look_at = at;
+  return sc;
+}
+
 // Phong (the normalised lobe, book 1.9) on a ball and the floor, under a quad light and a dim sky.
 scene phong_scene() {
-  scene sc;
-  const int floor = sc.add_material(material::phong(rgb(0.5f), rgb(0.3f), 8));
-  const int ball = sc.add_material(material::phong(rgb(0.4f, 0.2f, 0.1f), rgb(0.5f), 40));
-  const int lamp = sc.add_material(material::emitter(rgb(4.0f)));
-  sc.add(quad{{-3, 0, -3}, {0, 0, 6}, {6, 0, 0}}, floor);
-  sc.add(sphere{{0, 0.6, 0}, 0.6}, ball);
-  sc.add(quad{{-0.5, 2, -0.5}, {1, 0, 0}, {0, 0, 1}}, lamp);  // normal down
-  sc.background = rgb(0.05f, 0.07f, 0.1f);
-  sc.camera.position = {0, 1.3, 3};
-  sc.camera.look_at = {0, 0.5, 0};
+  scene sc = stage(material::phong(rgb(0.5f), rgb(0.3f), 8), 1, 2, rgb(4.0f), rgb(0.05f, 0.07f, 0.1f), {0, 1.3, 3},
+                   {0, 0.5, 0});
+  sc.add(sphere{{0, 0.6, 0}, 0.6}, sc.add_material(material::phong(rgb(0.4f, 0.2f, 0.1f), rgb(0.5f), 40)));
   return sc;
 }
 
 // Chapter 5's appearance. Rough metals (a preset's complex index, an RGB F0 with Schlick, a
 // roughness map) on a checker floor under a quad light and a dim sky.
 scene rough_conductor_scene() {
-  scene sc;
-  const int floor = sc.add_material(material::lambertian(texture::checker(rgb(0.7f), rgb(0.3f), 0.5)));
+  scene sc = stage(material::lambertian(texture::checker(rgb(0.7f), rgb(0.3f), 0.5)), 1.2, 2, rgb(5.0f),
+                   rgb(0.1f, 0.12f, 0.15f), {0, 1.2, 3}, {0, 0.4, 0});
   const int gold = sc.add_material(material::rough_conductor(0.25, *find_metal("gold")));
   const int f0 = sc.add_material(material::rough_conductor(0.05, conductor_fresnel::from_f0(rgb(0.9f, 0.6f, 0.4f))));
   material mapped = material::rough_conductor(0.3, *find_metal("copper"));
   mapped.roughness_map = texture::checker(rgb(0.02f), rgb(0.6f), 0.2);
   const int copper = sc.add_material(mapped);
-  const int lamp = sc.add_material(material::emitter(rgb(5.0f)));
-  sc.add(quad{{-3, 0, -3}, {0, 0, 6}, {6, 0, 0}}, floor);
   sc.add(sphere{{-0.9, 0.4, 0}, 0.4}, gold);
   sc.add(sphere{{0, 0.4, -0.3}, 0.4}, f0);
   sc.add(sphere{{0.9, 0.4, 0}, 0.4}, copper);
-  sc.add(quad{{-0.6, 2, -0.6}, {1.2, 0, 0}, {0, 0, 1.2}}, lamp);  // normal down
-  sc.background = rgb(0.1f, 0.12f, 0.15f);
-  sc.camera.position = {0, 1.2, 3};
-  sc.camera.look_at = {0, 0.4, 0};
   return sc;
 }
 
 // Rough glass (Walter 2007): a ball and a slab in front of a checker wall, lit by a quad light.
 scene rough_dielectric_scene() {
-  scene sc;
-  const int floor = sc.add_material(material::lambertian(rgb(0.7f)));
-  const int wall = sc.add_material(material::lambertian(texture::checker(rgb(0.8f, 0.3f, 0.2f), rgb(0.2f, 0.3f, 0.8f), 0.3)));
+  scene sc = stage(material::lambertian(rgb(0.7f)), 1, 2.2, rgb(6.0f), rgb(0.05f), {0, 1.1, 3}, {0, 0.5, 0});
+  const int wall =
+      sc.add_material(material::lambertian(texture::checker(rgb(0.8f, 0.3f, 0.2f), rgb(0.2f, 0.3f, 0.8f), 0.3)));
   const int frosted = sc.add_material(material::rough_dielectric(0.15, 1.5));
   const int milky = sc.add_material(material::rough_dielectric(0.5, 1.33));
-  const int lamp = sc.add_material(material::emitter(rgb(6.0f)));
-  sc.add(quad{{-3, 0, -3}, {0, 0, 6}, {6, 0, 0}}, floor);
   sc.add(quad{{-3, 0, -1.5}, {6, 0, 0}, {0, 3, 0}}, wall);
   sc.add(sphere{{-0.5, 0.5, 0}, 0.5}, frosted);
   sc.add(quad{{0.3, 0, 0.3}, {0.8, 0, 0}, {0, 0.9, 0}}, milky);  // a thin pane, one interface
-  sc.add(quad{{-0.5, 2.2, -0.5}, {1, 0, 0}, {0, 0, 1}}, lamp);
-  sc.background = rgb(0.05f);
-  sc.camera.position = {0, 1.1, 3};
-  sc.camera.look_at = {0, 0.5, 0};
   return sc;
 }
 
@@ -145,13 +139,11 @@ scene textured_scene() {
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 6; ++x)
       img->at(x, y) = rgb(0.15f + 0.13f * float(x), 0.1f + 0.2f * float(y), (x + y) % 2 ? 0.8f : 0.1f);
-  scene sc;
-  const int floor = sc.add_material(material::lambertian(texture::image_map(img, true, "grid")));
+  scene sc = stage(material::lambertian(texture::image_map(img, true, "grid")), 1, 2.2, rgb(5.0f), rgb(0),
+                   {0, 1.3, 3}, {0, 0.5, 0});
   const int ball = sc.add_material(material::lambertian(texture::image_map(img, false, "grid")));
   const int marble = sc.add_material(
       material::lambertian(texture::noise(rgb(0.9f, 0.85f, 0.8f), rgb(0.1f, 0.15f, 0.3f), 2.5, 5, true)));
-  const int lamp = sc.add_material(material::emitter(rgb(5.0f)));
-  sc.add(quad{{-3, 0, 3}, {6, 0, 0}, {0, 0, -6}}, floor);
   sc.add(sphere{{-0.7, 0.45, 0}, 0.45}, ball);
   sc.add(sphere{{0.7, 0.45, 0}, 0.45}, marble);
   mesh m;  // a square behind, its texture coordinates beyond [0, 1] (the clamp shows)
@@ -159,9 +151,6 @@ scene textured_scene() {
   m.texcoords = {{-0.5, -0.5}, {1.5, -0.5}, {1.5, 1.5}, {-0.5, 1.5}};
   m.triangles = {{0, 1, 2}, {0, 2, 3}};
   sc.add(m, ball);
-  sc.add(quad{{-0.5, 2.2, -0.5}, {1, 0, 0}, {0, 0, 1}}, lamp);
-  sc.camera.position = {0, 1.3, 3};
-  sc.camera.look_at = {0, 0.5, 0};
   return sc;
 }
 
@@ -470,6 +459,108 @@ TEST_CASE("the new features draw path.hpp's numbers in path.hpp's order (paired 
   check_paired("rough glass", rough_dielectric_scene(), integrator::mis);
   check_paired("textures", textured_scene(), integrator::mis);
   check_paired("sky map", sky_scene(false), integrator::mis);
+}
+
+// ---------------------------------------------------------------- the new functions at the extremes
+// The kernel's environment sampling and image lookups (built with -DPROBES) against
+// environment.hpp's and texture.hpp's on the same numbers: float against double, so within
+// float rounding, at the places where a float copy could go wrong.
+TEST_CASE("the kernel's environment: samples, densities and radiance as environment.hpp's, at the extremes") {
+  auto ctx = device();
+  if (!ctx) return;
+  image sky(8, 4);  // a row and a column of zeros (empty bins), one bright texel, the rest graded
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 8; ++x) sky.at(x, y) = y == 3 || x == 5 ? rgb(0) : rgb(0.2f * float(x + 1), 0.5f, float(y + 1));
+  sky.at(2, 1) = rgb(50, 40, 30);
+  scene sc;
+  sc.add(sphere{{0, 0, 0}, 1}, sc.add_material(material::lambertian(rgb(0.5f))));
+  sc.environment = std::make_shared<environment_map>(environment_map::from_image(sky, "sky", 1.0f, 30));
+  const environment_map& e = *sc.environment;
+  const gpu_scene g = pack_scene(sc, 4, 4, method(integrator::mis));
+  std::vector<cl_float4> in;
+  std::vector<vec2> us = {{0, 0}, {0x1.fffffep-1, 0x1.fffffep-1}, {0, 0x1.fffffep-1}, {0.5, 0.5}, {0.999, 0.001}};
+  rng r(5, 0, 0);
+  while (us.size() < 64) us.push_back(vec2(float(r.uniform()), float(r.uniform())));
+  std::vector<vec3> ds = {{0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {0, 0, -1}, {1e-30, 1, 0}};
+  while (ds.size() < us.size()) ds.push_back(glm::normalize(vec3(r.uniform() - 0.5, r.uniform() - 0.5, r.uniform() - 0.5)));
+  for (const vec2& u : us) in.push_back({{float(u.x), float(u.y), 0, 0}});
+  for (const vec3& d : ds) in.push_back({{float(d.x), float(d.y), float(d.z), 0}});
+  const int n = int(us.size());
+  const auto prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
+                                            "-cl-std=CL1.2 -DHAS_ENVIRONMENT -DMETHOD_MIS -DPROBES");
+  const auto k = cl::make_kernel(prog, "probe_environment");
+  const auto env = ctx->make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_environment), &g.environment);
+  const auto tables = ctx->make_buffer(CL_MEM_READ_ONLY, g.env_tables.size() * sizeof(float), g.env_tables.data());
+  const auto texels = ctx->make_buffer(CL_MEM_READ_ONLY, g.texels.size() * sizeof(gpu_float4), g.texels.data());
+  const auto inb = ctx->make_buffer(CL_MEM_READ_ONLY, in.size() * sizeof(cl_float4), in.data());
+  const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, 3 * in.size() * sizeof(cl_float4));
+  cl::set_args(k, env, tables, texels, inb, out, cl_int(n));
+  cl::run_1d(*ctx, k, std::size_t(n));
+  std::vector<cl_float4> o(3 * std::size_t(n));
+  ctx->read(out, o.size() * sizeof(cl_float4), o.data());
+  for (int i = 0; i < n; ++i) {
+    const cl_float4 s = o[3 * std::size_t(i)], self = o[3 * std::size_t(i) + 1], l = o[3 * std::size_t(i) + 2];
+    double pdf = 0;
+    const vec3 w = e.sample(vec2(double(in[std::size_t(i)].s[0]), double(in[std::size_t(i)].s[1])), pdf);
+    CAPTURE(i);
+    CHECK(std::abs(s.s[0] - w.x) < 1e-4);  // the same direction for the same numbers
+    CHECK(std::abs(s.s[1] - w.y) < 1e-4);
+    CHECK(std::abs(s.s[2] - w.z) < 1e-4);
+    // Its density is the CPU's density of the direction the kernel made (next to a pole, where
+    // 1 - v has no digits left in float, that direction is not quite the CPU's), and the
+    // kernel's own env_pdf of it: what makes MIS and NEE consistent.
+    // u.x = 0 is the seam phi = 0 = 2 pi, where the direction's density is read from the last
+    // column instead of the first, by the CPU's pdf() as well: a set of measure zero.
+    const vec3 wk(s.s[0], s.s[1], s.s[2]);
+    CHECK(std::isfinite(s.s[3]));
+    if (in[std::size_t(i)].s[0] != 0.0f) {
+      CHECK(s.s[3] == doctest::Approx(e.pdf(glm::normalize(wk))).epsilon(1e-4));
+      CHECK(self.s[0] == doctest::Approx(s.s[3]).epsilon(1e-4));
+    }
+    if (i > 4) CHECK(s.s[3] == doctest::Approx(pdf).epsilon(1e-4));  // away from the extremes: the CPU's too
+    const vec3 d = ds[std::size_t(i)];
+    const double p = e.pdf(d);
+    const rgb L = e.radiance(d);
+    CHECK(l.s[3] == doctest::Approx(p).epsilon(1e-4));  // 0 at the poles, exactly
+    if (p == 0) CHECK(l.s[3] == 0.0f);
+    for (int c = 0; c < 3; ++c) CHECK(l.s[c] == doctest::Approx(L[c]).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("the kernel's image lookups: texture.hpp's bilinear, repeat and clamp, NaN and huge (u, v)") {
+  auto ctx = device();
+  if (!ctx) return;
+  auto img = std::make_shared<image>(5, 3);
+  rng r(9, 0, 0);
+  for (rgb& p : img->pixels) p = rgb(float(r.uniform()), float(r.uniform()), float(r.uniform()));
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  std::vector<cl_float2> uv = {{{nan, 0.5f}}, {{0.5f, inf}}, {{-inf, -inf}}, {{1e30f, -1e30f}}, {{-1e-9f, 1e-9f}},
+                               {{0x1.fffffep-1f, 0.0f}}, {{0.5f, 0.5f}}, {{2.7f, -3.2f}}, {{0.1f, 0.9f}}, {{-0.3f, 1.6f}}};
+  while (uv.size() < 64) uv.push_back({{float(4 * r.uniform() - 2), float(4 * r.uniform() - 2)}});
+  const int n = int(uv.size());
+  const auto prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
+                                            "-cl-std=CL1.2 -DHAS_TEXTURES -DHAS_IMAGE_TEXTURES -DMETHOD_MIS -DPROBES");
+  const auto k = cl::make_kernel(prog, "probe_image");
+  for (bool repeat : {true, false}) {
+    scene sc;
+    sc.add(sphere{{0, 0, -3}, 1}, sc.add_material(material::lambertian(texture::image_map(img, repeat))));
+    const gpu_scene g = pack_scene(sc, 4, 4, method(integrator::mis));
+    REQUIRE(g.textures.size() == 1);
+    const auto t = ctx->make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_texture), g.textures.data());
+    const auto texels = ctx->make_buffer(CL_MEM_READ_ONLY, g.texels.size() * sizeof(gpu_float4), g.texels.data());
+    const auto uvb = ctx->make_buffer(CL_MEM_READ_ONLY, uv.size() * sizeof(cl_float2), uv.data());
+    const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, uv.size() * sizeof(cl_float4));
+    cl::set_args(k, t, texels, uvb, out, cl_int(n));
+    cl::run_1d(*ctx, k, std::size_t(n));
+    std::vector<cl_float4> o(uv.size());
+    ctx->read(out, o.size() * sizeof(cl_float4), o.data());
+    for (int i = 0; i < n; ++i) {
+      const rgb want = lookup_bilinear(*img, double(uv[std::size_t(i)].s[0]), double(uv[std::size_t(i)].s[1]), repeat);
+      CAPTURE(i);
+      CAPTURE(repeat);
+      for (int c = 0; c < 3; ++c) CHECK(std::abs(o[std::size_t(i)].s[c] - want[c]) < 1e-5);
+    }
+  }
 }
 
 TEST_CASE("progressive accumulation: 4 launches of 8 spp are one launch of 32") {
