@@ -1565,6 +1565,35 @@ kernel void probe_environment(global const environment_t* env, global const floa
   out[3 * i + 2] = (float4)(env_radiance(&sc, d), env_pdf(&sc, d));
 }
 #endif
+#if defined(HAS_ROUGH_CONDUCTOR) && defined(HAS_ROUGH_DIELECTRIC)
+// Case i in the local frame: in[3i] = (wo, alpha), in[3i + 1] = (wi, u_lobe), in[3i + 2] =
+// (u.x, u.y, eta, material): materials[0] a rough conductor, the glass's eta given here.
+// out[4i] = (f, pdf) for (wo, wi); out[4i + 1] = (sampled wi, pdf), out[4i + 2] = (weight, ok).
+kernel void probe_microfacet(global const material_t* materials, global const float4* in, global float4* out,
+                             int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  const float4 a = in[3 * i], b = in[3 * i + 1], c = in[3 * i + 2];
+  const float3 wo = a.xyz, wi = b.xyz;
+  const float alpha = a.w, eta = c.z;
+  float3 f, sw = (float3)(0.0f), weight = (float3)(0.0f);
+  float pdf, spdf = 0.0f;
+  bool ok;
+  if (c.w == 0.0f) {
+    f = rough_conductor_f(materials, alpha, wo, wi);
+    pdf = rough_conductor_pdf(alpha, wo, wi);
+    ok = rough_conductor_sample(materials, alpha, wo, c.xy, &sw, &weight, &spdf);
+  } else {
+    f = (float3)(rough_dielectric_f(alpha, eta, wo, wi));
+    pdf = rough_dielectric_pdf(alpha, eta, wo, wi);
+    ok = rough_dielectric_sample(alpha, eta, wo, c.xy, b.w, &sw, &weight, &spdf);
+  }
+  out[4 * i] = (float4)(f, pdf);
+  out[4 * i + 1] = (float4)(sw, spdf);
+  out[4 * i + 2] = (float4)(weight, ok ? 1.0f : 0.0f);
+  out[4 * i + 3] = (float4)(0.0f);
+}
+#endif
 #ifdef HAS_IMAGE_TEXTURES
 // out[i] = lookup_bilinear(textures[0], uv[i])
 kernel void probe_image(global const texture_t* t, global const float4* texels, global const float2* uv,

@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 
 #include <cstring>
+#include <limits>
 
 using namespace zraka;
 
@@ -217,6 +218,11 @@ TEST_CASE("what the kernel cannot run is an error naming it: user shapes, custom
   m.sigma_s = rgb(0.1f);
   fog.global_medium = fog.add_medium(m);
   CHECK_THROWS_WITH_AS(pack_scene(fog, 8, 8, depth(4)), doctest::Contains("participating media ('fog')"), error);
+  scene hot;  // an image texel beyond float (an HDR file may hold one): refused, not rendered as inf
+  auto img = std::make_shared<image>(2, 2, rgb(0.5f));
+  img->at(1, 0) = rgb(std::numeric_limits<float>::infinity(), 0, 0);
+  hot.add(sphere{{0, 0, -3}, 1}, hot.add_material(material::lambertian(texture::image_map(img, true, "hot.hdr"))));
+  CHECK_THROWS_WITH_AS(pack_scene(hot, 8, 8, depth(4)), doctest::Contains("a texel of a texture"), error);
 }
 
 // ---------------------------------------------------------------- the appearance of chapter 5

@@ -1,8 +1,11 @@
 // links: OpenCL yaml-cpp
 // The real-time path tracer (realtime.hpp, kernels/pathtrace.cl) against the REFERENCE: a long
 // mis render of the CPU path tracer (path.hpp through render.hpp), on a scene set covering
-// every emitter kind (triangle, mesh, one- and two-sided quads, spheres, point lights), every
-// material (Lambert with checker, Phong, metal, glass) and the naive, nee and mis kernels.
+// every emitter kind (triangle, mesh, one- and two-sided quads, spheres, point lights, the
+// environment map and a constant sky), every material (Lambert with checker, image and noise
+// textures, Phong, metal, glass, rough conductors and dielectrics) and the naive, nee and mis
+// kernels; and the new functions (environment sampling, image lookups, microfacets) on extreme
+// inputs against the C++ they mirror, through small probe kernels.
 // Without an OpenCL platform every case says so and passes (nothing to test on this machine).
 #include <zraka/cornell.hpp>
 #include <zraka/environment.hpp>
@@ -525,6 +528,109 @@ TEST_CASE("the kernel's environment: samples, densities and radiance as environm
     if (p == 0) CHECK(l.s[3] == 0.0f);
     for (int c = 0; c < 3; ++c) CHECK(l.s[c] == doctest::Approx(L[c]).epsilon(1e-4));
   }
+}
+
+TEST_CASE("the kernel's microfacets: f, pdf and samples as microfacet.hpp's, grazing and at alpha 1e-4 to 1") {
+  auto ctx = device();
+  if (!ctx) return;
+  const material gold = material::rough_conductor(0.5, *find_metal("gold"));
+  const gpu_material gm = to_gpu(gold);
+  struct case_t {
+    vec3 wo, wi;
+    double alpha, u_lobe, ux, uy, eta;
+    int kind;  // 0 conductor, 1 glass
+  };
+  std::vector<case_t> cases;
+  rng r(13, 0, 0);
+  auto unit = [&] {
+    return glm::normalize(vec3(r.uniform() - 0.5, r.uniform() - 0.5, r.uniform() - 0.5) + vec3(0, 0, 1e-3));
+  };
+  const vec3 grazing = glm::normalize(vec3(1, 0.2, 1e-6));
+  const vec3 edge[] = {{0, 0, 1}, grazing, {1, 0, 0}, {0.6, 0, -0.8}};  // normal, grazing, on the horizon, below
+  for (double alpha : {1e-4, 1e-3, 0.05, 0.5, 1.0})
+    for (int kind : {0, 1})
+      for (double eta : {1.5, 1 / 1.5}) {
+        for (const vec3& wo : edge) cases.push_back({wo, unit(), alpha, r.uniform(), r.uniform(), r.uniform(), eta, kind});
+        for (int k = 0; k < 12; ++k) {
+          vec3 wo = unit();
+          wo.z = std::abs(wo.z);
+          cases.push_back({wo, unit(), alpha, r.uniform(), r.uniform(), r.uniform(), eta, kind});
+        }
+      }
+  std::vector<cl_float4> in;
+  for (const case_t& c : cases) {
+    in.push_back({{float(c.wo.x), float(c.wo.y), float(c.wo.z), float(c.alpha)}});
+    in.push_back({{float(c.wi.x), float(c.wi.y), float(c.wi.z), float(c.u_lobe)}});
+    in.push_back({{float(c.ux), float(c.uy), float(c.eta), float(c.kind)}});
+  }
+  const int n = int(cases.size());
+  const auto prog = cl::build_program_files(
+      *ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
+      "-cl-std=CL1.2 -DHAS_ROUGH_CONDUCTOR -DHAS_ROUGH_DIELECTRIC -DMETHOD_MIS -DPROBES");
+  const auto k = cl::make_kernel(prog, "probe_microfacet");
+  const auto mb = ctx->make_buffer(CL_MEM_READ_ONLY, sizeof gm, &gm);
+  const auto inb = ctx->make_buffer(CL_MEM_READ_ONLY, in.size() * sizeof(cl_float4), in.data());
+  const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, 4 * cases.size() * sizeof(cl_float4));
+  cl::set_args(k, mb, inb, out, cl_int(n));
+  cl::run_1d(*ctx, k, std::size_t(n));
+  std::vector<cl_float4> o(4 * cases.size());
+  ctx->read(out, o.size() * sizeof(cl_float4), o.data());
+  int compared = 0, sampled = 0;
+  for (int i = 0; i < n; ++i) {
+    const case_t& c = cases[std::size_t(i)];
+    // The CPU side on the float inputs the kernel saw.
+    auto f32 = [](const vec3& v) { return vec3(float(v.x), float(v.y), float(v.z)); };
+    const vec3 wo = f32(c.wo), wi = f32(c.wi);
+    const ggx_t<double> d(double(float(c.alpha)));
+    const double eta = double(float(c.eta));
+    rgb f;
+    double pdf;
+    std::optional<microfacet_sample_t<double>> sm;
+    const vec2 u(double(float(c.ux)), double(float(c.uy)));
+    if (c.kind == 0) {
+      const rough_conductor_t<double> m{d, gold.conductor};
+      f = m.f(wo, wi);
+      pdf = m.pdf(wo, wi);
+      sm = m.sample(wo, u);
+    } else {
+      const rough_dielectric_t<double> m{d, eta};
+      f = rgb(float(m.f(wo, wi)));
+      pdf = m.pdf(wo, wi);
+      sm = m.sample(wo, u, double(float(c.u_lobe)));
+    }
+    const cl_float4 kf = o[4 * std::size_t(i)], ks = o[4 * std::size_t(i) + 1], kw = o[4 * std::size_t(i) + 2];
+    CAPTURE(i);
+    CAPTURE(c.alpha);
+    CAPTURE(c.kind);
+    for (const cl_float4& v : {kf, ks, kw})
+      for (int j = 0; j < 4; ++j) CHECK(std::isfinite(v.s[j]));  // never NaN or inf, grazing or sharp
+    CHECK(kf.s[3] >= 0.0f);
+    if (!(wo.z > 0)) {  // on the horizon or below: nothing, on both sides
+      CHECK(kf.s[0] == 0.0f);
+      CHECK(kf.s[3] == 0.0f);
+      CHECK(kw.s[3] == 0.0f);
+      CHECK_FALSE(sm);
+      continue;
+    }
+    // Float against double: the sharpest lobes move by the float rounding of a direction over
+    // alpha, so compare where the lobe is resolved (alpha >= 1e-3) and not on a knife's edge.
+    if (c.alpha >= 1e-3 && wo.z > 1e-3) {
+      ++compared;
+      for (int j = 0; j < 3; ++j) CHECK(kf.s[j] == doctest::Approx(f[j]).epsilon(2e-3).scale(1e-6));
+      CHECK(kf.s[3] == doctest::Approx(pdf).epsilon(2e-3).scale(1e-6));
+      if (sm && kw.s[3] == 1.0f && std::abs(double(c.u_lobe) - 0.5) < 0.45) {
+        ++sampled;
+        CHECK(std::abs(ks.s[0] - sm->wi.x) < 1e-3);
+        CHECK(std::abs(ks.s[2] - sm->wi.z) < 1e-3);
+        CHECK(ks.s[3] == doctest::Approx(sm->pdf).epsilon(2e-3));
+        CHECK(kw.s[1] == doctest::Approx(sm->weight.y).epsilon(2e-3));
+      }
+    }
+    if (kw.s[3] == 1.0f) CHECK(ks.s[3] > 0.0f);  // a sample has a density
+  }
+  MESSAGE(compared << " cases compared with microfacet.hpp, " << sampled << " samples");
+  CHECK(compared > 150);
+  CHECK(sampled > 60);
 }
 
 TEST_CASE("the kernel's image lookups: texture.hpp's bilinear, repeat and clamp, NaN and huge (u, v)") {
