@@ -8,16 +8,34 @@
 
 The scene comes as the JSON that `pathtrace --export` writes: spheres, quads (boxes are six
 quads), triangles (meshes are flattened into them), point lights, materials, a pinhole camera,
-the image size and the maximum number of bounces. What maps one to one:
+the environment, the image size and the maximum number of bounces. What maps one to one:
   lambertian -> diffuse;  metal with fuzz 0 -> conductor 'none' scaled by the albedo (a mirror);
   dielectric -> dielectric (int_ior = ior, ext_ior = 1);  emitter -> black diffuse + area
   emitter (one-sided, like zraka's default);  point light -> point;  background -> constant.
+  rough_conductor -> roughconductor, distribution ggx, alpha = zraka's alpha (not squared), eta
+  and k per channel (zraka's presets are Mitsuba's own RGB values, microfacet.hpp);
+  rough_dielectric -> roughdielectric, ggx, alpha, int_ior = ior.  Both sample visible normals.
+  One difference remains, by design: Mitsuba's masking-shadowing is separable, G1(wo) G1(wi);
+  zraka's is height-correlated, 1 / (1 + Lambda(wo) + Lambda(wi)), which is larger, so zraka's
+  rough surfaces are brighter by a few per cent at large alpha and grazing angles (book 5.4).
+  An image texture on a lambertian quad -> bitmap of zraka's linear texels (raw, bilinear,
+  repeat or clamp), its rows flipped: Mitsuba puts row 0 at v = 0, zraka at v = 1; a rectangle's
+  (u, v) is zraka's quad's (a, b).
+  Environment: constant -> constant; a map -> envmap rotated about +y by `rotate` degrees. Its
+  texels go over as zraka's bilinear function: Mitsuba interpolates between texel centres in u
+  (as zraka) but puts its rows at v = j / (H - 1), poles included, while zraka's rows sit at
+  v = (j + 1/2) / H, clamped at the poles; the map given to Mitsuba has 2H + 1 rows at
+  v = j / (2H): zraka's rows, the means of neighbours between them, and the first and last row
+  again at the poles, which is exactly zraka's piecewise bilinear radiance.
 What has no exact Mitsuba counterpart is refused with a message: checker textures, fuzzy metal
-(zraka's is RTIOW's fuzzed mirror, not a microfacet model), phong, two-sided emitters, planes.
+(zraka's is RTIOW's fuzzed mirror, not a microfacet model), phong, two-sided emitters, planes
+(and, already by the exporter: noise and roughness textures, an RGB f0, textures off quads).
 Mitsuba's `path` integrator counts max_depth in path segments, so it gets zraka's bounces + 1;
 the film uses a box filter, as zraka's pixel sampling does.
 
---compare prints RMSE, relative MSE and the mean of each channel of both images.
+--compare prints RMSE, relative MSE, the mean of each channel of both images and the difference
+of the means in standard errors (the spread of the per-pixel difference over sqrt(pixels)).
+Render Mitsuba twice with different --seed and --compare its two images for its own noise.
 Not part of the tests: Mitsuba is a few hundred MB from PyPI.
 """
 import argparse
@@ -58,12 +76,32 @@ def rgb(v):
     return {"type": "rgb", "value": [float(x) for x in v]}
 
 
-def bsdf_of(m, index):
+def bitmap_of(tex, mi, np):
+    """A Mitsuba bitmap texture equal to zraka's image texture (texture.hpp's lookup_bilinear)."""
+    img = np.array(tex["texels"], dtype=np.float32).reshape(tex["height"], tex["width"], 3)
+    return {"type": "bitmap", "bitmap": mi.Bitmap(np.ascontiguousarray(img[::-1])), "raw": True,
+            "filter_type": "bilinear", "wrap_mode": "repeat" if tex["repeat"] else "clamp"}
+
+
+def envmap_rows(img, np):
+    """zraka's H rows (centres at v = (j + 1/2) / H, clamped at the poles) as 2H + 1 rows at
+    v = j / (2H), where Mitsuba's envmap puts them: the same piecewise bilinear function."""
+    h = img.shape[0]
+    out = np.empty((2 * h + 1,) + img.shape[1:], dtype=np.float64)
+    out[1::2] = img
+    out[0], out[-1] = img[0], img[-1]
+    out[2:-1:2] = 0.5 * (img[:-1].astype(np.float64) + img[1:])
+    return out
+
+
+def bsdf_of(m, index, mi=None, np=None):
     """The Mitsuba BSDF for zraka material `m`, or an error naming what cannot be converted."""
     kind = m["type"]
     if kind in ("lambertian", "emitter"):
         if m["checker"]:
             raise ValueError(f"material {index}: checker textures have no exact Mitsuba counterpart")
+        if m.get("texture"):
+            return {"type": "diffuse", "reflectance": bitmap_of(m["texture"], mi, np)}
         return {"type": "diffuse", "reflectance": rgb([0, 0, 0] if kind == "emitter" else m["albedo"])}
     if kind == "metal":
         if m["fuzz"] != 0:
@@ -73,6 +111,12 @@ def bsdf_of(m, index):
         if float(m["ior"]) == 1.0 and m.get("interior", -1) >= 0:  # zraka's boundary: index-matched
             return {"type": "null"}
         return {"type": "dielectric", "int_ior": float(m["ior"]), "ext_ior": 1.0}
+    if kind == "rough_conductor":  # book 5.4
+        return {"type": "roughconductor", "distribution": "ggx", "alpha": float(m["alpha"]),
+                "eta": rgb(m["eta"]), "k": rgb(m["k"])}
+    if kind == "rough_dielectric":
+        return {"type": "roughdielectric", "distribution": "ggx", "alpha": float(m["alpha"]),
+                "int_ior": float(m["ior"]), "ext_ior": 1.0}
     raise ValueError(f"material {index}: type {kind} has no exact Mitsuba counterpart")
 
 
@@ -85,6 +129,8 @@ def emitter_of(m, index):
 
 
 def scene_dict(js, mi, workdir):
+    import numpy as np
+
     T = mi.ScalarTransform4f
     cam = js["camera"]
     media = js.get("media", [])
@@ -110,7 +156,7 @@ def scene_dict(js, mi, workdir):
     if js.get("global_medium", -1) >= 0:
         d["sensor"]["medium"] = {"type": "ref", "id": f"medium{js['global_medium']}"}
     mats = js["materials"]
-    bsdfs = [bsdf_of(m, i) for i, m in enumerate(mats)]
+    bsdfs = [bsdf_of(m, i, mi, np) for i, m in enumerate(mats)]
     emitters = [emitter_of(m, i) for i, m in enumerate(mats)]
 
     def shape(s, mat, name):
@@ -148,7 +194,14 @@ def scene_dict(js, mi, workdir):
         shape({"type": "obj", "filename": path, "face_normals": True}, mat, f"mesh{mat}")
     for i, p in enumerate(js.get("point_lights", [])):
         d[f"point{i}"] = {"type": "point", "position": p["position"], "intensity": rgb(p["intensity"])}
-    if any(js["background"]):
+    env = js.get("environment")
+    if env and env["type"] == "constant":
+        d["sky"] = {"type": "constant", "radiance": rgb(env["radiance"])}
+    elif env:  # book 5.3: the map, turned about +y as zraka turns it (environment.hpp)
+        img = np.array(env["texels"], dtype=np.float32).reshape(env["height"], env["width"], 3)
+        d["sky"] = {"type": "envmap", "bitmap": mi.Bitmap(envmap_rows(img, np).astype(np.float32)),
+                    "to_world": T().rotate([0, 1, 0], float(env["rotate"]))}
+    elif any(js["background"]):
         d["sky"] = {"type": "constant", "radiance": rgb(js["background"])}
     return d
 
@@ -166,6 +219,8 @@ def compare(ours_path, theirs):
     print(f"RMSE {rmse:.5f}, relMSE {relmse:.5f}")
     print("mean R G B: zraka %.5f %.5f %.5f, Mitsuba %.5f %.5f %.5f" % (*mo, *mt))
     print("zraka/Mitsuba - 1 per channel: %+.4f %+.4f %+.4f" % tuple(mo / mt - 1))
+    se = diff.reshape(-1, 3).std(0, ddof=1) / np.sqrt(diff.shape[0] * diff.shape[1])
+    print("difference of the means in standard errors: %+.1f %+.1f %+.1f" % tuple((mo - mt) / se))
 
 
 def main():

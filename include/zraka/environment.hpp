@@ -66,6 +66,8 @@ class environment_map {
   int width() const { return constant_ ? 1 : img_.width; }
   int height() const { return constant_ ? 1 : img_.height; }
   double rotate_degrees() const { return rotate_; }
+  // A map's texels, scale applied (row 0 the zenith); empty for a constant sky (radiance() is it).
+  const image& texels() const { return img_; }
 
   // [listing environment-lookup]
   // The radiance arriving along -w, i.e. seen looking in direction w (unit).
