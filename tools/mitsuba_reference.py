@@ -206,12 +206,18 @@ def scene_dict(js, mi, workdir):
     return d
 
 
-def compare(ours_path, theirs):
+def compare(ours_path, theirs, crop=None):
     import numpy as np
 
     ours = read_pfm(ours_path)
     if ours.shape != theirs.shape:
         sys.exit(f"{ours_path} is {ours.shape[1]}x{ours.shape[0]}, Mitsuba's {theirs.shape[1]}x{theirs.shape[0]}")
+    if crop:  # x0 y0 x1 y1, pixels, x1 and y1 excluded, rows from the top
+        x0, y0, x1, y1 = crop
+        if not (0 <= x0 < x1 <= ours.shape[1] and 0 <= y0 < y1 <= ours.shape[0]):
+            sys.exit(f"error: --crop {x0} {y0} {x1} {y1} is not inside the {ours.shape[1]}x{ours.shape[0]} image")
+        ours, theirs = ours[y0:y1, x0:x1], theirs[y0:y1, x0:x1]
+        print(f"pixels [{x0}, {x1}) x [{y0}, {y1}) only")
     diff = ours - theirs
     rmse = float(np.sqrt(np.mean(diff * diff)))
     relmse = float(np.mean(diff * diff / (theirs * theirs + 0.01)))
@@ -230,6 +236,8 @@ def main():
     ap.add_argument("--spp", type=int, default=256, help="samples per pixel (default 256)")
     ap.add_argument("--seed", type=int, default=0, help="Mitsuba's sampler seed")
     ap.add_argument("--compare", help="a zraka PFM of the same scene: print RMSE and channel means")
+    ap.add_argument("--crop", type=int, nargs=4, metavar=("X0", "Y0", "X1", "Y1"),
+                    help="compare only pixels x0 <= x < x1, y0 <= y < y1 (rows from the top)")
     a = ap.parse_args()
     if a.spp < 1:
         sys.exit("error: --spp must be at least 1")
@@ -253,7 +261,7 @@ def main():
     print(f"Mitsuba {mi.__version__} scalar_rgb: {js['width']}x{js['height']}, {a.spp} spp, "
           f"max_depth {js['max_depth'] + 1} (zraka: {js['max_depth']} bounces) in {secs:.1f} s; wrote {a.out}")
     if a.compare:
-        compare(a.compare, img)
+        compare(a.compare, img, a.crop)
 
 
 if __name__ == "__main__":
