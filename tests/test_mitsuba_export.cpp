@@ -177,8 +177,18 @@ TEST_CASE("mitsuba_export: the environment is written: a constant sky, or a map'
 
   scene map = small_scene();
   map.environment = std::make_shared<environment_map>(environment_map::from_image(*two_texels(), "sky.hdr", 4.0f, -12.5));
-  CHECK(mitsuba_scene_json(map, 8, 8, 1).find("\"environment\": {\"type\": \"map\", \"source\": \"sky.hdr\", \"rotate\": -12.5, "
-                                              "\"width\": 2, \"height\": 1, \"texels\": [4, 0, 0, 0, 0, 1]}") != std::string::npos);
+  const std::string j = mitsuba_scene_json(map, 8, 8, 1);
+  CHECK(j.find("\"environment\": {\"type\": \"map\", \"source\": \"sky.hdr\", \"rotate\": -12.5, "
+               "\"width\": 2, \"height\": 1, \"texels\": [4, 0, 0, 0, 0, 1]}") != std::string::npos);
+  CHECK(count(j, "{") == count(j, "}"));
+  CHECK(count(j, "[") == count(j, "]"));
+
+  // A texel near float's top survives with its 9 digits (no "inf" in the JSON).
+  image hot(1, 1, rgb(3e38f, 1e-30f, 0.0f));
+  map.environment = std::make_shared<environment_map>(environment_map::from_image(hot, "hot.pfm"));
+  const std::string h = mitsuba_scene_json(map, 8, 8, 1);
+  CHECK(float(number_after(h, "\"texels\": [")) == 3e38f);
+  CHECK(h.find("inf") == std::string::npos);
 }
 
 TEST_CASE("mitsuba_export: a file name with control characters is escaped, so the JSON stays valid") {

@@ -35,7 +35,8 @@ the film uses a box filter, as zraka's pixel sampling does.
 
 --compare prints RMSE, relative MSE, the mean of each channel of both images and the difference
 of the means in standard errors (the spread of the per-pixel difference over sqrt(pixels)).
-Render Mitsuba twice with different --seed and --compare its two images for its own noise.
+Render Mitsuba twice with different --seed and --compare its two images for its own noise;
+--diff A.pfm B.pfm compares two files without rendering (two zraka renders of different seeds).
 Not part of the tests: Mitsuba is a few hundred MB from PyPI.
 """
 import argparse
@@ -206,7 +207,7 @@ def scene_dict(js, mi, workdir):
     return d
 
 
-def compare(ours_path, theirs, crop=None):
+def compare(ours_path, theirs, crop=None, names=("zraka", "Mitsuba")):
     import numpy as np
 
     ours = read_pfm(ours_path)
@@ -223,22 +224,30 @@ def compare(ours_path, theirs, crop=None):
     relmse = float(np.mean(diff * diff / (theirs * theirs + 0.01)))
     mo, mt = ours.reshape(-1, 3).mean(0), theirs.reshape(-1, 3).mean(0)
     print(f"RMSE {rmse:.5f}, relMSE {relmse:.5f}")
-    print("mean R G B: zraka %.5f %.5f %.5f, Mitsuba %.5f %.5f %.5f" % (*mo, *mt))
-    print("zraka/Mitsuba - 1 per channel: %+.4f %+.4f %+.4f" % tuple(mo / mt - 1))
+    a, b = names
+    print(f"mean R G B: {a} %.5f %.5f %.5f, {b} %.5f %.5f %.5f" % (*mo, *mt))
+    print(f"{a}/{b} - 1 per channel: %+.4f %+.4f %+.4f" % tuple(mo / mt - 1))
     se = diff.reshape(-1, 3).std(0, ddof=1) / np.sqrt(diff.shape[0] * diff.shape[1])
     print("difference of the means in standard errors: %+.1f %+.1f %+.1f" % tuple((mo - mt) / se))
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("scene", help="JSON written by `pathtrace --export`")
-    ap.add_argument("-o", "--out", required=True, help="PFM file to write")
+    ap.add_argument("scene", nargs="?", help="JSON written by `pathtrace --export`")
+    ap.add_argument("-o", "--out", help="PFM file to write")
     ap.add_argument("--spp", type=int, default=256, help="samples per pixel (default 256)")
     ap.add_argument("--seed", type=int, default=0, help="Mitsuba's sampler seed")
     ap.add_argument("--compare", help="a zraka PFM of the same scene: print RMSE and channel means")
     ap.add_argument("--crop", type=int, nargs=4, metavar=("X0", "Y0", "X1", "Y1"),
                     help="compare only pixels x0 <= x < x1, y0 <= y < y1 (rows from the top)")
+    ap.add_argument("--diff", nargs=2, metavar=("A.pfm", "B.pfm"),
+                    help="render nothing: compare two PFM files (e.g. two zraka renders, for their noise)")
     a = ap.parse_args()
+    if a.diff:
+        compare(a.diff[0], read_pfm(a.diff[1]), a.crop, ("A", "B"))
+        return
+    if not a.scene or not a.out:
+        sys.exit("error: give the scene JSON and -o OUT.pfm (or --diff A.pfm B.pfm)")
     if a.spp < 1:
         sys.exit("error: --spp must be at least 1")
     with open(a.scene, encoding="utf-8") as f:
