@@ -50,6 +50,7 @@ xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "$bin/importance" --out 5.3-importance.png >/dev/null && cp 5.3-importance.png "$fig/"
 "$bin/pathtrace" --scene "$fig/../../scenes/sky.yaml" --spp 256 --out 5.3-sky.png >/dev/null && cp 5.3-sky.png "$fig/"
 "$bin/pathtrace" --scene "$fig/../../scenes/textures.yaml" --spp 256 --out 2.2-textures.png >/dev/null && cp 2.2-textures.png "$fig/"
+"$bin/pathtrace" --scene "$fig/../../scenes/teapot-sky.yaml" --spp 256 --out 5.4-teapot-sky.png >/dev/null && cp 5.4-teapot-sky.png "$fig/"
 if bash "${bin%/build/bin}/tools/plot-setup.sh"; then
   aa_plot=("${bin%/build/bin}/build/plot-venv/bin/python" "${bin%/build/bin}/tools/plot_convergence.py")
   "${aa_plot[@]}" 5.1-antialiasing-{regular,uniform,stratified}.csv -o "$fig/5.1-rmse.png" \

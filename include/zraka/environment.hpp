@@ -66,8 +66,9 @@ class environment_map {
   int width() const { return constant_ ? 1 : img_.width; }
   int height() const { return constant_ ? 1 : img_.height; }
   double rotate_degrees() const { return rotate_; }
-  // What the OpenCL kernel packs (gpu_scene.hpp): the scaled map, its sampling distribution,
-  // the rotation's cosine and sine, a constant sky's radiance.
+  // What the OpenCL kernel packs (gpu_scene.hpp) and the Mitsuba export writes: the map's texels,
+  // scale applied (row 0 the zenith; empty for a constant sky), its sampling distribution, the
+  // rotation's cosine and sine, a constant sky's radiance.
   const image& map() const { return img_; }
   const distribution_2d& distribution() const { return dist_; }
   double cos_rotation() const { return cos_; }
