@@ -20,3 +20,6 @@
 #if defined(ZRAKA_COMPILED_SCENE_FILE)  // built with yaml-cpp
 #include <zraka/scene_file.hpp>
 #endif
+#if defined(ZRAKA_COMPILED_MITSUBA_XML)  // and pugixml
+#include <zraka/mitsuba_xml.hpp>
+#endif
