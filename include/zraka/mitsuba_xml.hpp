@@ -768,64 +768,12 @@ class mitsuba_reader {
     else if (type == "disk") fail(n, "type", "zraka has no disk shape yet");
     else fail(n, "type", "unknown plugin '" + type + "' (zraka reads the shapes sphere, rectangle, cube, obj)");
 
-    // The BSDF (nested or <ref id>) and an area emitter.
-    pugi::xml_node bsdf_node, emitter_node;
-    bsdf_t inline_bsdf;
-    bsdf_t* b = nullptr;
-    for (pugi::xml_node c : p.nested) {
-      const std::string tag = c.name();
-      if (tag == "bsdf" || tag == "ref") {
-        if (bsdf_node) fail(c, "a second BSDF for one shape");
-        bsdf_node = c;
-        if (tag == "ref") {
-          attributes(c, {"id", "name"});
-          if (c.attribute("name") && attr(c, "name") != "bsdf") fail(c, "name", "zraka reads a reference to a BSDF only");
-          b = &bsdf_by_id(attr(c, "id"), c);
-        } else {
-          if (c.attribute("id")) fail(c, "id", "give a shape's own BSDF no id, or define it at the top level and use <ref id>");
-          inline_bsdf = convert_bsdf(c, false);
-          inline_bsdf.name = unique_name(type + "-line" + std::to_string(line_of(c)));
-          b = &inline_bsdf;
-        }
-      } else if (tag == "emitter") {
-        if (emitter_node) fail(c, "a second emitter for one shape");
-        emitter_node = c;
-      } else {
-        fail(c, "unexpected in a shape (zraka reads a <bsdf>, a <ref id> and an <emitter type=\"area\">)");
-      }
-    }
-    YAML::Node mat_name;
-    if (emitter_node) {
-      attributes(emitter_node, {"type", "id", "name"});
-      if (attr(emitter_node, "type") != "area") fail(emitter_node, "type", "a shape's emitter must be area");
-      const params ep = parameters(emitter_node, {"radiance"});
-      no_nested(ep, emitter_node);
-      const rgb radiance = colour_param(ep, "radiance", 1);
-      // zraka's emitter reflects nothing; Mitsuba's shape reflects by its BSDF (diffuse 0.5 if none).
-      if (!b || !b->black)
-        fail(bsdf_node ? bsdf_node : n, "zraka's area lights reflect nothing: give the emitting shape a black BSDF "
-                                        "(<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0\"/></bsdf>)");
-      YAML::Node m;
-      m["type"] = "emitter";
-      m["radiance"] = flow(radiance);
-      m.SetStyle(YAML::EmitterStyle::Flow);
-      const std::string name = unique_name("emitter-line" + std::to_string(line_of(emitter_node)));
-      materials_[name] = m;
-      mat_name = name;
-    } else {
-      if (!b) fail(n, "zraka needs the shape's BSDF (Mitsuba's default is a one-sided diffuse 0.5)");
-      mat_name = use(*b, n, bsdf_node);
-    }
-
     const affine a = transform_param(p, "to_world");
     const pugi::xml_node tw = param(p, "to_world") ? param(p, "to_world") : n;
     if (glm::determinant(a.linear) <= 0)
       fail(tw, "a to_world that mirrors or flattens the shape is outside the subset (Mitsuba turns faces, zraka does not)");
-    auto add = [&](YAML::Node o) {
-      o["material"] = mat_name;
-      o.SetStyle(YAML::EmitterStyle::Flow);
-      objects_.push_back(o);
-    };
+    std::vector<YAML::Node> made;  // the geometry first, so its errors come in the file's order
+    auto add = [&](YAML::Node o) { made.push_back(o); };
     if (type == "sphere") {
       // [listing mitsuba-sphere]
       const mat3& l = a.linear;
@@ -875,7 +823,8 @@ class mitsuba_reader {
       const std::string file = string_param(p, "filename", "");
       const std::filesystem::path full = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : dir_ / file;
       std::error_code ec;
-      if (!std::filesystem::is_regular_file(full, ec)) fail(fn, "value", "file not found next to the scene file: " + full.string());
+      // Only whether it is there: a FIFO or a device is named as such by read_input_file.
+      if (!std::filesystem::exists(full, ec)) fail(fn, "value", "file not found next to the scene file: " + full.string());
       (void)bool_param(p, "flip_tex_coords", true);  // uv only matter to textures, which are not read
       // Mitsuba: face_normals false uses the file's vn, or smooth normals it computes when the
       // file has none; zraka uses vn when every corner has one, else flat faces.
@@ -895,6 +844,61 @@ class mitsuba_reader {
       o["file"] = file;  // the YAML reader looks next to the scene file first, where it is
       if (param(p, "to_world")) o["transform"] = mesh_transform(a, tw);
       add(o);
+    }
+
+    // The BSDF (nested or <ref id>) and an area emitter.
+    pugi::xml_node bsdf_node, emitter_node;
+    bsdf_t inline_bsdf;
+    bsdf_t* b = nullptr;
+    for (pugi::xml_node c : p.nested) {
+      const std::string tag = c.name();
+      if (tag == "bsdf" || tag == "ref") {
+        if (bsdf_node) fail(c, "a second BSDF for one shape");
+        bsdf_node = c;
+        if (tag == "ref") {
+          attributes(c, {"id", "name"});
+          if (c.attribute("name") && attr(c, "name") != "bsdf") fail(c, "name", "zraka reads a reference to a BSDF only");
+          b = &bsdf_by_id(attr(c, "id"), c);
+        } else {
+          if (c.attribute("id")) fail(c, "id", "give a shape's own BSDF no id, or define it at the top level and use <ref id>");
+          inline_bsdf = convert_bsdf(c, false);
+          inline_bsdf.name = unique_name(type + "-line" + std::to_string(line_of(c)));
+          b = &inline_bsdf;
+        }
+      } else if (tag == "emitter") {
+        if (emitter_node) fail(c, "a second emitter for one shape");
+        emitter_node = c;
+      } else {
+        fail(c, "unexpected in a shape (zraka reads a <bsdf>, a <ref id> and an <emitter type=\"area\">)");
+      }
+    }
+    YAML::Node mat_name;
+    if (emitter_node) {
+      attributes(emitter_node, {"type", "id", "name"});
+      if (attr(emitter_node, "type") != "area") fail(emitter_node, "type", "a shape's emitter must be area");
+      const params ep = parameters(emitter_node, {"radiance"});
+      no_nested(ep, emitter_node);
+      const rgb radiance = colour_param(ep, "radiance", 1);
+      // zraka's emitter reflects nothing; Mitsuba's shape reflects by its BSDF (diffuse 0.5 if none).
+      if (!b || !b->black)
+        fail(bsdf_node ? bsdf_node : n, "zraka's area lights reflect nothing: give the emitting shape a black BSDF "
+                                        "(<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0\"/></bsdf>)");
+      YAML::Node m;
+      m["type"] = "emitter";
+      m["radiance"] = flow(radiance);
+      m.SetStyle(YAML::EmitterStyle::Flow);
+      const std::string name = unique_name("emitter-line" + std::to_string(line_of(emitter_node)));
+      materials_[name] = m;
+      mat_name = name;
+    } else {
+      if (!b) fail(n, "zraka needs the shape's BSDF (Mitsuba's default is a one-sided diffuse 0.5)");
+      mat_name = use(*b, n, bsdf_node);
+    }
+
+    for (YAML::Node& o : made) {
+      o["material"] = mat_name;
+      o.SetStyle(YAML::EmitterStyle::Flow);
+      objects_.push_back(o);
     }
   }
   // zraka's mesh transform is scale, then rotate about one axis, then translate.
@@ -962,7 +966,8 @@ class mitsuba_reader {
         const std::string file = string_param(p, "filename", "");
         const std::filesystem::path full = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : dir_ / file;
         std::error_code ec;
-        if (!std::filesystem::is_regular_file(full, ec)) fail(fn, "value", "file not found next to the scene file: " + full.string());
+        // Only whether it is there: a FIFO or a device is named as such by read_input_file.
+      if (!std::filesystem::exists(full, ec)) fail(fn, "value", "file not found next to the scene file: " + full.string());
         const double scale = float_param(p, "scale", 1);
         if (!(scale >= 0)) fail(param(p, "scale"), "value", "must not be negative");
         // environment.hpp uses Mitsuba's latitude-longitude map; zraka turns it about +y only.
