@@ -7,31 +7,18 @@
 #include <zraka/mitsuba_xml.hpp>
 #include <zraka/scene_argument.hpp>
 
+#include "expected_errors.hpp"
+
 #include <doctest/doctest.h>
 
-#include <algorithm>
 #include <fstream>
-#include <functional>
 
 using namespace zraka;
+using zraka_test::error_of;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("zraka_test_mitsuba_xml_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 // A scene around `body`: a sensor, a path integrator and what the test adds.
 std::string scene_xml(const std::string& body, const std::string& sensor_extra = "", int w = 64, int h = 32,
                       int depth = 5) {
@@ -51,25 +38,8 @@ bool near(const vec3& a, const vec3& b, double tol = 1e-12) { return glm::length
 }  // namespace
 
 TEST_CASE("Mitsuba XML: each bad file gives the error its first line expects") {
-  const fs::path dir = resource_root() / "tests" / "scenes" / "bad" / "xml";
-  REQUIRE(fs::is_directory(dir));
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().extension() == ".xml") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  CHECK(files.size() >= 25);
-  for (const fs::path& f : files) {
-    std::ifstream in(f);
-    std::string first;
-    std::getline(in, first);
-    const std::string tag = "<!-- expect: ", end = " -->";
-    REQUIRE_MESSAGE(first.rfind(tag, 0) == 0, f.filename().string() << " has no '<!-- expect:' line");
-    REQUIRE(first.size() > tag.size() + end.size());
-    const std::string expected = f.string() + first.substr(tag.size(), first.size() - tag.size() - end.size());
-    const std::string got = error_of([&] { load_scene_argument(f.string()); });
-    INFO(f.filename().string());
-    CHECK_MESSAGE(got.find(expected) == 0, "got: " << got << "\nexpected to start with: " << expected);
-  }
+  zraka_test::check_expected_errors(resource_root() / "tests" / "scenes" / "bad" / "xml", ".xml", "<!-- expect: ", " -->",
+                                    25, false, [](const fs::path& f) { (void)load_scene_argument(f.string()); });
 }
 
 TEST_CASE("Mitsuba XML: the Cornell box of scenes/mitsuba is scenes/cornell.yaml, quad for quad") {
@@ -169,7 +139,8 @@ TEST_CASE("Mitsuba XML: a camera by lookat and by its matrix is one camera; max_
 }
 
 TEST_CASE("Mitsuba XML: an obj's to_world becomes zraka's scale, rotate, translate, half turns too") {
-  const fs::path dir = temp_dir("obj");
+  const fs::path dir = fs::temp_directory_path() / "zraka_test_mitsuba_xml_obj";
+  fs::create_directories(dir);
   {
     std::ofstream(dir / "tri.obj") << "v 1 0 0\nv 0 2 0\nv 0 0 3\nvn 1 0 0\nvn 0 1 0\nvn 0 0 1\nf 1//1 2//2 3//3\n";
   }

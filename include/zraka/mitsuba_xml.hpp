@@ -56,7 +56,6 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <set>
 #include <vector>
@@ -240,7 +239,6 @@ class mitsuba_reader {
     if (!n.attribute(a)) fail(n, std::string("attribute '") + a + "' is missing");
     return n.attribute(a).value();
   }
-  // [listing mitsuba-substitution]
   // An attribute's value with every $name replaced by its <default>, once (a default's value is
   // not substituted again, so nothing can grow without end).
   std::string attr(const pugi::xml_node& n, const char* a) const {
@@ -261,7 +259,6 @@ class mitsuba_reader {
     }
     return out;
   }
-  // [end]
 
   // ---------------------------------------------------------------- values
   double number_text(const pugi::xml_node& n, const char* a, const std::string& s) const {
@@ -428,7 +425,6 @@ class mitsuba_reader {
     return xyz(c, 0);
   }
 
-  // [listing mitsuba-transform]
   // <transform name="to_world"> with translate, rotate, scale, matrix and lookat in order: each
   // applies after the ones before it (left-multiplies), as in Mitsuba.
   affine transform_param(const params& p, const char* key) const {
@@ -480,16 +476,16 @@ class mitsuba_reader {
     }
     return a;
   }
-  // [end]
 
   // ---------------------------------------------------------------- YAML output
+  // The shortest text that reads back as the same double (to_chars): the YAML is the XML's
+  // scene to the last bit, and 0.35 stays 0.35.
   static YAML::Node num(double x) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", x);
-    return YAML::Node(std::string(buf));
+    return YAML::Node(std::string(buf, std::to_chars(buf, buf + sizeof buf, x).ptr));
   }
   static YAML::Node flow(const vec3& v) {
-    YAML::Node s;
+    YAML::Node s(YAML::NodeType::Sequence);
     for (int i = 0; i < 3; ++i) s.push_back(num(v[i]));
     s.SetStyle(YAML::EmitterStyle::Flow);
     return s;
@@ -531,7 +527,6 @@ class mitsuba_reader {
     fov = float_param(p, "fov", fov);
     if (!(fov > 0 && fov < 180)) fail(param(p, "fov"), "value", "must be in (0, 180) degrees");
     const std::string axis = string_param(p, "fov_axis", "x");
-    // [listing mitsuba-fov]
     // zraka's vfov is the vertical angle; Mitsuba's fov is along fov_axis (x by default).
     const double t = std::tan(fov * pi<double> / 360), w = width, h = height;
     double tan_half_v = 0;
@@ -542,7 +537,6 @@ class mitsuba_reader {
     else if (axis == "larger") tan_half_v = w > h ? t * h / w : t;
     else fail(param(p, "fov_axis"), "value", "expected x, y, diagonal, smaller or larger");
     const double vfov = 2 * std::atan(tan_half_v) * 180 / pi<double>;
-    // [end]
 
     // [listing mitsuba-camera]
     // Mitsuba's camera looks along +z of to_world with +y up, and its +x points to the image's
@@ -706,10 +700,8 @@ class mitsuba_reader {
       const params p = type == "dielectric" ? parameters(n, {"int_ior", "ext_ior"})
                                             : parameters(n, {"int_ior", "ext_ior", "distribution", "alpha", "sample_visible"});
       for (pugi::xml_node c : p.nested) fail(c, "unexpected in a dielectric");
-      // [listing mitsuba-ior]
       // Mitsuba's defaults: bk7 glass in air; zraka's ior is the ratio (outside is 1).
       const double ior = ior_param(p, "int_ior", 1.5046) / ior_param(p, "ext_ior", 1.000277);
-      // [end]
       m["ior"] = num(ior);
       if (type == "dielectric") {
         m["type"] = "dielectric";
@@ -775,7 +767,6 @@ class mitsuba_reader {
     std::vector<YAML::Node> made;  // the geometry first, so its errors come in the file's order
     auto add = [&](YAML::Node o) { made.push_back(o); };
     if (type == "sphere") {
-      // [listing mitsuba-sphere]
       const mat3& l = a.linear;
       const double s = glm::length(l[0]);
       if (!orthogonal_columns(l) || std::abs(glm::length(l[1]) - s) > 1e-9 * s || std::abs(glm::length(l[2]) - s) > 1e-9 * s)
@@ -790,7 +781,6 @@ class mitsuba_reader {
       o["center"] = flow(c);
       o["radius"] = num(r * s);
       add(o);
-      // [end]
     } else if (type == "rectangle" || type == "cube") {
       // [listing mitsuba-rectangle]
       // Mitsuba's rectangle is [-1, 1]^2 at z = 0 facing +z; its cube [-1, 1]^3 facing out. Under
