@@ -150,7 +150,8 @@ TEST_CASE("Mitsuba XML: an obj's to_world becomes zraka's scale, rotate, transla
     INFO(rot);
     const std::string tw = "<transform name=\"to_world\"><scale x=\"2\" y=\"0.5\" z=\"3\"/>" + rot +
                            "<translate x=\"1\" y=\"-2\" z=\"0.25\"/></transform>";
-    const std::string shape = "<shape type=\"obj\"><string name=\"filename\" value=\"tri.obj\"/>" + tw +
+    const std::string shape = "<shape type=\"obj\"><string name=\"filename\" value=\"tri.obj\"/>"
+                              "<boolean name=\"face_normals\" value=\"true\"/>" + tw +
                               "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/></bsdf></shape>";
     const scene sc = parse_xml(scene_xml(shape), dir).sc;
     REQUIRE(sc.meshes.size() == 1);

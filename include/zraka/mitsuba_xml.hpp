@@ -10,7 +10,7 @@
 //   sensor perspective (fov, fov_axis, near/far clip left out) with to_world, film hdrfilm
 //   (width, height, a box rfilter), sampler independent (sample_count, seed), integrator path
 //   (max_depth: Mitsuba counts path segments, zraka bounces, so zraka's max_depth is one less);
-//   shapes sphere, rectangle, cube, obj; BSDFs twosided around diffuse, conductor (material
+//   shapes sphere, rectangle, cube, obj (face_normals: zraka's path tracers shade meshes flat); BSDFs twosided around diffuse, conductor (material
 //   'none') or roughconductor, and dielectric, roughdielectric (both GGX); emitters area (on a
 //   shape whose BSDF is black), point, constant, envmap (rotated about +y only);
 //   <default>, $name, <ref id>, and the transforms translate, rotate, scale, matrix, lookat.
@@ -816,19 +816,16 @@ class mitsuba_reader {
       // Only whether it is there: a FIFO or a device is named as such by read_input_file.
       if (!std::filesystem::exists(full, ec)) fail(fn, "value", "file not found next to the scene file: " + full.string());
       (void)bool_param(p, "flip_tex_coords", true);  // uv only matter to textures, which are not read
-      // Mitsuba: face_normals false uses the file's vn, or smooth normals it computes when the
-      // file has none; zraka uses vn when every corner has one, else flat faces.
-      const bool face_normals = bool_param(p, "face_normals", false);
-      bool has_normals = false;
-      try {
-        has_normals = !load_obj(full).normals.empty();
+      // Mitsuba shades a mesh with the file's vn (or smooth normals it makes) unless face_normals
+      // is set; zraka's path tracers shade every triangle with its own normal: flat.
+      if (!bool_param(p, "face_normals", false))
+        fail(param(p, "face_normals") ? param(p, "face_normals") : n,
+             "zraka's path tracers shade meshes flat (Mitsuba smooths them by default): add <boolean name=\"face_normals\" value=\"true\"/>");
+      try {  // the file's errors at this line, before the YAML reader loads it again
+        (void)load_obj(full);
       } catch (const error& e) {
         fail(fn, "value", e.what());
       }
-      if (face_normals && has_normals)
-        fail(param(p, "face_normals"), "value", "face_normals with an OBJ that has normals: zraka would use them; remove the vn lines");
-      if (!face_normals && !has_normals)
-        fail(fn, "value", "the OBJ has no normals: Mitsuba computes smooth ones, zraka shades flat; add <boolean name=\"face_normals\" value=\"true\"/>");
       YAML::Node o;
       o["type"] = "mesh";
       o["file"] = file;  // the YAML reader looks next to the scene file first, where it is

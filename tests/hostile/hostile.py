@@ -91,6 +91,7 @@ def make_inputs():
           "]>\n<scene version=\"3.0.0\"><bsdf type=\"diffuse\" id=\"&l9;\"/></scene>\n")
     write("deep.xml", "<scene version=\"3.0.0\">" + "<b>" * 120000 + "</b>" * 120000 + "</scene>\n")
     write("fifo-mesh.xml", "<scene version=\"3.0.0\"><shape type=\"obj\"><string name=\"filename\" value=\"fifo.obj\"/>"
+          "<boolean name=\"face_normals\" value=\"true\"/>"
           "<bsdf type=\"dielectric\"/></shape></scene>\n")
     write("urandom-mesh.yaml", "objects: [{type: mesh, file: /dev/urandom}]\n")
     write("stdin-mesh.yaml", "objects: [{type: mesh, file: /dev/stdin}]\n")
