@@ -144,8 +144,8 @@ TEST_CASE("Mitsuba XML: an obj's to_world becomes zraka's scale, rotate, transla
   {
     std::ofstream(dir / "tri.obj") << "v 1 0 0\nv 0 2 0\nv 0 0 3\nvn 1 0 0\nvn 0 1 0\nvn 0 0 1\nf 1//1 2//2 3//3\n";
   }
-  for (const std::string rot : {"<rotate x=\"1\" y=\"2\" z=\"-0.5\" angle=\"37\"/>", "<rotate y=\"1\" angle=\"180\"/>",
-                                "<rotate x=\"1\" y=\"1\" angle=\"180\"/>", "<rotate z=\"1\" angle=\"179.99999\"/>",
+  for (const std::string rot : {"<rotate x=\"0.6\" y=\"0.48\" z=\"-0.64\" angle=\"37\"/>", "<rotate y=\"1\" angle=\"180\"/>",
+                                "<rotate x=\"0.6\" y=\"0.8\" angle=\"180\"/>", "<rotate z=\"1\" angle=\"179.99999\"/>",
                                 "<rotate z=\"1\" angle=\"0\"/>"}) {
     INFO(rot);
     const std::string tw = "<transform name=\"to_world\"><scale x=\"2\" y=\"0.5\" z=\"3\"/>" + rot +

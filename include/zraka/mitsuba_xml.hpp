@@ -447,8 +447,10 @@ class mitsuba_reader {
       } else if (tag == "rotate") {
         attributes(op, {"value", "x", "y", "z", "angle"});
         const vec3 axis = op.attribute("value") ? triple(op, "value") : xyz(op, 0);
-        if (normalize_or_zero(axis) == vec3(0)) fail(op, "the axis must not be zero");
-        m = affine::rotate(normalize_or_zero(axis), number(op, "angle") * pi<double> / 180);
+        // Mitsuba uses the axis as given: one not of unit length makes a matrix that also scales.
+        if (std::abs(glm::length(axis) - 1) > 1e-6)
+          fail(op, "the axis must have length 1 (Mitsuba does not normalise it; its matrix would also scale)");
+        m = affine::rotate(glm::normalize(axis), number(op, "angle") * pi<double> / 180);
       } else if (tag == "matrix") {
         attributes(op, {"value"});
         const std::vector<double> v = numbers(op, "value");
