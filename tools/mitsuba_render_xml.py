@@ -25,7 +25,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("scene", help="a Mitsuba 3 XML scene file")
     ap.add_argument("-o", "--out", required=True, help="PFM file to write")
-    ap.add_argument("--spp", type=int, default=0, help="samples per pixel (default: the file's)")
+    ap.add_argument("--spp", type=int, default=0, help="samples per pixel (default 0: the file's)")
     ap.add_argument("--seed", type=int, default=0, help="Mitsuba's sampler seed")
     ap.add_argument("--compare", help="a zraka PFM of the same file: print RMSE and channel means")
     ap.add_argument("--png", help="also write the image as an sRGB PNG, to look at")
@@ -45,7 +45,7 @@ def main():
     except Exception as e:  # Mitsuba's own parser: its message names the file and the element
         sys.exit(f"error: {e}")
     start = time.time()
-    img = np.array(mi.render(scene, spp=a.spp or None, seed=a.seed), dtype=np.float64)[:, :, :3]
+    img = np.array(mi.render(scene, spp=a.spp, seed=a.seed), dtype=np.float64)[:, :, :3]
     secs = time.time() - start
     if not np.all(np.isfinite(img)):
         sys.exit("error: Mitsuba's image has NaN or infinite pixels")
