@@ -99,6 +99,22 @@ TEST_CASE("Mitsuba XML: the three scenes of scenes/mitsuba load, and their YAML 
   CHECK(glass == 2);
 }
 
+TEST_CASE("Mitsuba XML: a bitmap on a rectangle: zraka's image texture, the quad's v edge running down") {
+  const scene sc = load_scene_argument("scenes/mitsuba/bitmap.xml").sc;
+  REQUIRE(sc.quads.size() == 1);
+  const material& m = sc.materials[std::size_t(sc.quads[0].material)];
+  CHECK(m.albedo.type == texture::kind::image);
+  CHECK(m.albedo.srgb);
+  CHECK(m.albedo.repeat);
+  // to_world: scale 1.2 x 0.9, then 10 degrees about z. Mitsuba's (u, v) = (0, 0) is the corner
+  // (-1, -1) in the shape's space and shows the image's top-left texel; zraka's uv (0, 0) shows
+  // the bottom-left one, so the quad starts at (-1, +1) and runs v down.
+  const affine a = affine::rotate(vec3(0, 0, 1), 10 * pi<double> / 180) * affine::scale(vec3(1.2, 0.9, 1));
+  CHECK(near(sc.quads[0].shape.corner, a.point(vec3(-1, 1, 0)), 1e-12));
+  CHECK(near(sc.quads[0].shape.u, a.vector(vec3(2, 0, 0)), 1e-12));
+  CHECK(near(sc.quads[0].shape.v, a.vector(vec3(0, -2, 0)), 1e-12));
+}
+
 TEST_CASE("Mitsuba XML: fov along x, y, the diagonal, the smaller and the larger side") {
   const double w = 200, h = 100, t = std::tan(90.0 * pi<double> / 360);
   auto vfov = [&](const std::string& axis) {

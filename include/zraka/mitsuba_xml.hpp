@@ -10,16 +10,18 @@
 //   sensor perspective (fov, fov_axis, near/far clip left out) with to_world, film hdrfilm
 //   (width, height, a box rfilter), sampler independent (sample_count, seed), integrator path
 //   (max_depth: Mitsuba counts path segments, zraka bounces, so zraka's max_depth is one less);
-//   shapes sphere, rectangle, cube, obj (face_normals: zraka's path tracers shade meshes flat); BSDFs twosided around diffuse, conductor (material
+//   shapes sphere, rectangle, cube, obj (face_normals: zraka's path tracers shade meshes flat);
+//   a bitmap texture as a diffuse reflectance, on rectangles (whose uv were checked); BSDFs twosided around diffuse, conductor (material
 //   'none') or roughconductor, and dielectric, roughdielectric (both GGX); emitters area (on a
 //   shape whose BSDF is black), point, constant, envmap (rotated about +y only);
 //   <default>, $name, <ref id>, and the transforms translate, rotate, scale, matrix, lookat.
 // Everything else is an error naming the file, the line, the element and the attribute:
 //   cornell.xml:12: <bsdf type="plastic">: unknown plugin 'plastic' (zraka reads: ...)
 // Refused because zraka's model differs: a bare diffuse or conductor (Mitsuba's are black from
-// behind, zraka's reflect on both sides: wrap them in twosided), Beckmann roughness, textures
-// (Mitsuba's checkerboard is in uv space, zraka's in world space; bitmap uv conventions are not
-// checked yet), disks (no disk shape), ply (no PLY reader yet), Mitsuba's gaussian pixel filter
+// behind, zraka's reflect on both sides: wrap them in twosided), Beckmann roughness, the
+// checkerboard (Mitsuba's is in uv space, zraka's in world space), a bitmap on other shapes than
+// rectangles or anywhere but a diffuse reflectance, disks (no disk shape), ply (no PLY reader
+// yet), Mitsuba's gaussian pixel filter
 // (zraka's is a box), a mirroring or shearing to_world where zraka's shape cannot follow it.
 // Limits as for YAML scenes (limits.hpp): file_bytes, and yaml_nodes for the XML's elements.
 // Needs pugixml (libpugixml-dev) and yaml-cpp; compiled once into zraka::compiled when zraka is
@@ -166,6 +168,7 @@ class mitsuba_reader {
     std::string name;     // its name in materials
     bool black = false;   // reflects nothing: may carry an area emitter
     bool one_sided = false;  // a bare diffuse or conductor
+    pugi::xml_node textured;  // its bitmap, if any: on rectangles only
     bool emitted = false;
   };
   std::map<std::string, bsdf_t> bsdfs_;  // by id
@@ -363,8 +366,7 @@ class mitsuba_reader {
       list += (list.empty() ? "<" : ", <") + std::string(t) + ">";
     }
     if (std::string(c.name()) == "texture")
-      fail(c, "textures are outside zraka's subset (Mitsuba's checkerboard is in uv space, zraka's checker in world "
-              "space; bitmap's uv conventions are not checked yet)");
+      fail(c, "a texture here is outside zraka's subset (zraka reads a bitmap as a diffuse reflectance only)");
     fail(c, "expected " + list);
   }
   double float_param(const params& p, const char* key, double fallback) const {
@@ -663,11 +665,17 @@ class mitsuba_reader {
     if (type == "diffuse") {
       const params p = parameters(n, {"reflectance"});
       no_nested(p, n);
-      const rgb r = colour_param(p, "reflectance", 0.5);
-      if (max_component(r) > 1) fail(param(p, "reflectance"), "value", "a reflectance must be at most 1");
       m["type"] = "lambertian";
-      m["albedo"] = flow(r);
-      b.black = max_component(r) == 0;
+      const pugi::xml_node tex = param(p, "reflectance");
+      if (tex && std::string(tex.name()) == "texture") {
+        m["albedo"] = bitmap(tex);
+        b.textured = tex;
+      } else {
+        const rgb r = colour_param(p, "reflectance", 0.5);
+        if (max_component(r) > 1) fail(param(p, "reflectance"), "value", "a reflectance must be at most 1");
+        m["albedo"] = flow(r);
+        b.black = max_component(r) == 0;
+      }
     } else if (type == "conductor") {
       const params p = parameters(n, {"material", "specular_reflectance"});
       no_nested(p, n);
@@ -720,6 +728,32 @@ class mitsuba_reader {
     b.one_sided = type == "diffuse" || type == "conductor" || type == "roughconductor";
     m.SetStyle(YAML::EmitterStyle::Flow);
     return b;
+  }
+  // A bitmap reflectance: zraka's image texture (bilinear, sRGB unless raw). Its uv are checked
+  // against Mitsuba's on rectangles only (book 4.1), so other shapes refuse it.
+  YAML::Node bitmap(const pugi::xml_node& t) {
+    attributes(t, {"type", "name", "id"});
+    if (attr(t, "type") != "bitmap")
+      fail(t, "type", "textures other than bitmap are outside zraka's subset (Mitsuba's checkerboard is in uv space, zraka's checker in world space)");
+    const params p = parameters(t, {"filename", "filter_type", "wrap_mode", "raw"});
+    no_nested(p, t);
+    const pugi::xml_node fn = param(p, "filename");
+    if (!fn) fail(t, "a bitmap needs <string name=\"filename\" value=\"...\"/>");
+    const std::string file = string_param(p, "filename", "");
+    std::error_code ec;
+    if (!std::filesystem::exists(std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : dir_ / file, ec))
+      fail(fn, "value", "file not found next to the scene file: " + file);
+    if (string_param(p, "filter_type", "bilinear") != "bilinear")
+      fail(param(p, "filter_type"), "value", "zraka's image textures are bilinear");
+    const std::string wrap = string_param(p, "wrap_mode", "repeat");
+    if (wrap != "repeat" && wrap != "clamp") fail(param(p, "wrap_mode"), "value", "zraka wraps by repeat or clamp");
+    YAML::Node img, a;
+    img["file"] = file;
+    img["srgb"] = !bool_param(p, "raw", false);
+    img["wrap"] = wrap;
+    a["image"] = img;
+    a.SetStyle(YAML::EmitterStyle::Flow);
+    return a;
   }
   bsdf_t& bsdf_by_id(const std::string& id, const pugi::xml_node& at) {
     if (const auto it = bsdfs_.find(id); it != bsdfs_.end()) return it->second;
@@ -881,6 +915,15 @@ class mitsuba_reader {
       mat_name = name;
     } else {
       if (!b) fail(n, "zraka needs the shape's BSDF (Mitsuba's default is a one-sided diffuse 0.5)");
+      if (b->textured && type != "rectangle")
+        fail(b->textured, "a bitmap is read on a rectangle only (zraka's uv on a " + type + " is not checked against Mitsuba's)");
+      // Mitsuba's bitmap has v = 0 at the image's top row, zraka's at the bottom (texture.hpp):
+      // the quad runs its v edge downwards instead. It then faces -z, which a two-sided
+      // diffuse surface does not see.
+      if (b->textured) {
+        made[0]["corner"] = flow(a.point(vec3(-1, 1, 0)));
+        made[0]["v"] = flow(a.vector(vec3(0, -2, 0)));
+      }
       mat_name = use(*b, n, bsdf_node);
     }
 
