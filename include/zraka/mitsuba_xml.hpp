@@ -60,6 +60,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <utility>
 #include <vector>
 #define ZRAKA_MITSUBA_XML_READER 1
 #endif
@@ -358,7 +359,18 @@ class mitsuba_reader {
   pugi::xml_node param(const params& p, const char* key) const {
     const auto it = p.by_name.find(key);
     return it == p.by_name.end() ? pugi::xml_node() : it->second;
+  }  // The plugin's filename as written and where it is: next to the scene file, as Mitsuba looks.
+  // Only whether it is there: a FIFO or a device is named as such by read_input_file later.
+  std::pair<std::string, std::filesystem::path> file_param(const pugi::xml_node& n, const params& p) const {
+    const pugi::xml_node fn = param(p, "filename");
+    if (!fn) fail(n, "needs <string name=\"filename\" value=\"...\"/>");
+    const std::string file = string_param(p, "filename", "");
+    const std::filesystem::path full = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : dir_ / file;
+    std::error_code ec;
+    if (!std::filesystem::exists(full, ec)) fail(fn, "value", "file not found next to the scene file: " + full.string());
+    return {file, full};
   }
+
   void expect_tag(const pugi::xml_node& c, std::initializer_list<const char*> tags) const {
     std::string list;
     for (const char* t : tags) {
@@ -501,12 +513,16 @@ class mitsuba_reader {
   }
 
   // ---------------------------------------------------------------- sensor, film, sampler, integrator
-  void sensor(const pugi::xml_node& n) {
+  // A plugin the scene has once, of the one type zraka reads.
+  void single(const pugi::xml_node& n, bool& seen, const std::string& what, const std::string& type) const {
     attributes(n, {"type", "id", "name"});
-    if (have_sensor_) fail(n, "a second sensor (zraka renders one camera)");
-    have_sensor_ = true;
-    const std::string type = attr(n, "type");
-    if (type != "perspective") fail(n, "type", "unknown sensor plugin '" + type + "' (zraka reads: perspective)");
+    if (seen) fail(n, "a second " + what + " (zraka reads one)");
+    seen = true;
+    const std::string t = attr(n, "type");
+    if (t != type) fail(n, "type", "unknown " + what + " plugin '" + t + "' (zraka reads: " + type + ")");
+  }
+  void sensor(const pugi::xml_node& n) {
+    single(n, have_sensor_, "sensor", "perspective");
     // near_clip and far_clip are not read: zraka's camera has no clip planes (Mitsuba's default
     // near_clip 0.01 cuts nothing in the scenes of scenes/mitsuba/).
     const params p = parameters(n, {"fov", "fov_axis", "to_world"});
@@ -592,11 +608,7 @@ class mitsuba_reader {
     settings_["seed"] = integer_param(p, "seed", 0, 0, 1LL << 40);
   }
   void integrator(const pugi::xml_node& n) {
-    attributes(n, {"type", "id", "name"});
-    if (have_integrator_) fail(n, "a second integrator");
-    have_integrator_ = true;
-    const std::string type = attr(n, "type");
-    if (type != "path") fail(n, "type", "unknown integrator plugin '" + type + "' (zraka reads: path)");
+    single(n, have_integrator_, "integrator", "path");
     // rr_depth: Russian roulette is unbiased, it changes the noise and not the image.
     const params p = parameters(n, {"max_depth", "rr_depth", "hide_emitters"});
     for (pugi::xml_node c : p.nested) fail(c, "unexpected in an integrator");
@@ -737,12 +749,7 @@ class mitsuba_reader {
       fail(t, "type", "textures other than bitmap are outside zraka's subset (Mitsuba's checkerboard is in uv space, zraka's checker in world space)");
     const params p = parameters(t, {"filename", "filter_type", "wrap_mode", "raw"});
     no_nested(p, t);
-    const pugi::xml_node fn = param(p, "filename");
-    if (!fn) fail(t, "a bitmap needs <string name=\"filename\" value=\"...\"/>");
-    const std::string file = string_param(p, "filename", "");
-    std::error_code ec;
-    if (!std::filesystem::exists(std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : dir_ / file, ec))
-      fail(fn, "value", "file not found next to the scene file: " + file);
+    const std::string file = file_param(t, p).first;
     if (string_param(p, "filter_type", "bilinear") != "bilinear")
       fail(param(p, "filter_type"), "value", "zraka's image textures are bilinear");
     const std::string wrap = string_param(p, "wrap_mode", "repeat");
@@ -845,13 +852,8 @@ class mitsuba_reader {
       // [end]
     } else {  // obj
       const pugi::xml_node fn = param(p, "filename");
-      if (!fn) fail(n, "an obj needs <string name=\"filename\" value=\"...\"/>");
-      const std::string file = string_param(p, "filename", "");
-      const std::filesystem::path full = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : dir_ / file;
-      std::error_code ec;
-      // Only whether it is there: a FIFO or a device is named as such by read_input_file.
-      if (!std::filesystem::exists(full, ec)) fail(fn, "value", "file not found next to the scene file: " + full.string());
-      (void)bool_param(p, "flip_tex_coords", true);  // uv only matter to textures, which are not read
+      const auto [file, full] = file_param(n, p);
+      (void)bool_param(p, "flip_tex_coords", true);  // uv only matter to textures, which an obj does not take
       // Mitsuba shades a mesh with the file's vn (or smooth normals it makes) unless face_normals
       // is set; zraka's path tracers shade every triangle with its own normal: flat.
       if (!bool_param(p, "face_normals", false))
@@ -993,13 +995,7 @@ class mitsuba_reader {
       } else {
         const params p = parameters(n, {"filename", "scale", "to_world"});
         for (pugi::xml_node c : p.nested) fail(c, "unexpected in an envmap");
-        const pugi::xml_node fn = param(p, "filename");
-        if (!fn) fail(n, "an envmap needs <string name=\"filename\" value=\"...\"/>");
-        const std::string file = string_param(p, "filename", "");
-        const std::filesystem::path full = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : dir_ / file;
-        std::error_code ec;
-        // Only whether it is there: a FIFO or a device is named as such by read_input_file.
-      if (!std::filesystem::exists(full, ec)) fail(fn, "value", "file not found next to the scene file: " + full.string());
+        const std::string file = file_param(n, p).first;
         const double scale = float_param(p, "scale", 1);
         if (!(scale >= 0)) fail(param(p, "scale"), "value", "must not be negative");
         // environment.hpp uses Mitsuba's latitude-longitude map; zraka turns it about +y only.
