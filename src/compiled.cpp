@@ -24,3 +24,6 @@
 #include <zraka/scene_argument.hpp>
 #include <zraka/scene_file.hpp>
 #endif
+#if defined(ZRAKA_COMPILED_MITSUBA_XML)  // and pugixml
+#include <zraka/mitsuba_xml.hpp>
+#endif

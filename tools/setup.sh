@@ -6,7 +6,7 @@ set -euo pipefail
 core=(build-essential cmake pkg-config
       libglm-dev libstb-dev libtinyexr-dev libglfw3-dev libepoxy-dev
       opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
-      doctest-dev libyaml-cpp-dev libcli11-dev libfmt-dev
+      doctest-dev libyaml-cpp-dev libpugixml-dev libcli11-dev libfmt-dev
       xvfb xauth libgl1-mesa-dri python3
       clang libclang-rt-14-dev)  # clang: tools/fuzz.sh (libFuzzer), which tools/test.sh runs
 extras=(libembree-dev pandoc python3-venv)  # python3-venv: tools/plot-setup.sh (book plots)

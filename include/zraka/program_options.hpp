@@ -213,7 +213,7 @@ ZRAKA_COMPILED_FN void program_options::add_shared() {
   };
   if (has(taken_, take::scene))
     app.add_option("--scene", scene, "a scene name (" + (scene_names.empty() ? "see named_scenes.hpp" : scene_names) +
-                                         ") or a .yaml scene file")
+                                         ") or a .yaml or Mitsuba .xml scene file")
       ;
   if (has(taken_, take::size)) {
     dflt(app.add_option("--width", width, "image width in pixels"));
