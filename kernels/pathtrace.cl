@@ -7,6 +7,10 @@
 //   HAS_SPHERES HAS_QUADS HAS_PLANES HAS_TRIANGLES   which shapes exist (triangles: with the BVH)
 //   HAS_METAL HAS_DIELECTRIC HAS_PHONG HAS_CHECKER   which materials are used
 //   HAS_EMITTERS                                 some material glows (emission is looked up)
+//   HAS_ROUGH_CONDUCTOR HAS_ROUGH_DIELECTRIC     microfacet.hpp's GGX materials
+//   HAS_TEXTURES    texture records (image or noise albedo, roughness maps), with
+//   HAS_IMAGE_TEXTURES (bilinear lookups by uv) and HAS_NOISE_TEXTURES (Perlin noise, marble)
+//   HAS_ENVIRONMENT the environment light (environment.hpp): seen by rays that leave, sampled
 //   HAS_SPHERE_LIGHTS HAS_QUAD_LIGHTS HAS_TRIANGLE_LIGHTS HAS_POINT_LIGHTS   which lights are sampled
 //   HAS_THIN_LENS   the camera has an aperture   WEAK_SEED   the thesis's per-pixel seed (C7)
 // Code for a feature the scene does not use is not compiled at all.
@@ -28,6 +32,9 @@
 #define RR_DEPTH 3
 #endif
 #define PI_F 3.14159265358979323846f
+#if defined(HAS_ROUGH_CONDUCTOR) || defined(HAS_ROUGH_DIELECTRIC)
+#define HAS_MICROFACETS
+#endif
 // gamma(n) = n u / (1 - n u), u = 2^-24 (spawn.hpp in float)
 #define GAMMA(n) (((float)(n) * 0x1p-24f) / (1.0f - (float)(n) * 0x1p-24f))
 
@@ -52,9 +59,24 @@ typedef struct { float4 a, b, c; uint id; int material, light, p1; } triangle_t;
 typedef struct { float box[6][4]; uint child[4], count[4]; } node4_t;
 typedef struct {
   float4 albedo_a, albedo_b, radiance;  // phong: kd, ks
-  int kind, checker, two_sided, pad;
+  int kind, checker, two_sided, schlick;  // schlick: the conductor's F0 is in eta
   float fuzz, ior, cell, shininess;
+  float4 eta, k;                        // rough_conductor: complex index per channel (or F0)
+  int albedo_texture, roughness_texture, p0, p1;  // index in textures, or -1
+  float roughness, p2, p3, p4;          // rough_*: the GGX alpha without a roughness texture
 } material_t;
+typedef struct {  // texture.hpp's texture: image texels from texels[first], row 0 at the top
+  float4 a, b;
+  int kind, width, height, first;
+  int repeat, octaves, marble, p0;
+  float cell, frequency, p1, p2;
+} texture_t;
+typedef struct {  // environment.hpp's map: texels from texels[first]; its distribution in env_tables
+  float4 radiance;                    // a constant sky's
+  int is_constant, width, height, first;
+  int light, present, p0, p1;         // light: its index in the light table, or -1
+  float cos_rotation, sin_rotation, marginal_total, p2;
+} environment_t;
 typedef struct {
   float4 position, intensity;       // point lights
   int kind, object, material, first;  // object: sphere or quad; first: triangles in light_tris
@@ -69,10 +91,17 @@ typedef struct { float4 origin, u, v, corner, horizontal, vertical; float lens_r
 #define KIND_DIELECTRIC 2
 #define KIND_EMITTER 3
 #define KIND_PHONG 4
+#define KIND_ROUGH_CONDUCTOR 5
+#define KIND_ROUGH_DIELECTRIC 6
+#define TEX_SOLID 0
+#define TEX_CHECKER 1
+#define TEX_IMAGE 2
+#define TEX_NOISE 3
 #define LIGHT_SPHERE 0
 #define LIGHT_QUAD 1
 #define LIGHT_TRIANGLES 2
 #define LIGHT_POINT 3
+#define LIGHT_ENVIRONMENT 4
 
 // The scene, as the kernel's arguments give it.
 typedef struct {
@@ -86,6 +115,21 @@ typedef struct {
   global const light_triangle_t* light_tris;
   int n_spheres, n_quads, n_planes, n_lights, n_nodes;
   float3 background;
+#ifdef HAS_TEXTURES
+  global const texture_t* textures;
+  global const int* noise_permutation;
+#endif
+#if defined(HAS_TEXTURES) || defined(HAS_ENVIRONMENT)
+  global const float4* texels;
+#endif
+#ifdef HAS_IMAGE_TEXTURES
+  global const float4* tri_uvs;  // 2 per triangle, in the BVH's order; none: uv = barycentrics
+  int has_tri_uvs;
+#endif
+#ifdef HAS_ENVIRONMENT
+  global const environment_t* env;
+  global const float* env_tables;
+#endif
 } scene_t;
 
 typedef struct {
@@ -94,7 +138,15 @@ typedef struct {
   bool front_face;
   int material;
   int light;  // the light table's index of the object hit, or -1
+#ifdef HAS_IMAGE_TEXTURES
+  float2 uv;  // the shape's surface coordinates, as its C++ intersect() gives them
+#endif
+#ifdef HAS_TEXTURES
+  const scene_t* sc;  // where a texture lookup finds its texels
+#endif
 } hit_t;
+
+typedef struct { float3 t, b, n; } onb_t;
 
 // ---------------------------------------------------------------- random numbers
 // [listing stream]
@@ -179,6 +231,10 @@ bool hit_sphere(const sphere_t s, float3 o, float3 D, float t_max, hit_t* h) {
     h->normal = on / r;
     h->material = s.material;
     h->light = s.light;
+#ifdef HAS_IMAGE_TEXTURES  // sphere.hpp: longitude, latitude from -y (0) to +y (1)
+    const float phi = atan2(-h->normal.z, h->normal.x) + PI_F;
+    h->uv = (float2)(phi / (2.0f * PI_F), acos(clamp(-h->normal.y, -1.0f, 1.0f)) / PI_F);
+#endif
   }
   return true;
 }
@@ -210,12 +266,18 @@ bool hit_quad(const quad_t q, float3 o, float3 D, float t_max, hit_t* h) {
     h->normal = N;
     h->material = q.material;
     h->light = q.light;
+#ifdef HAS_IMAGE_TEXTURES
+    h->uv = (float2)(a, b);
+#endif
   }
   return true;
 }
 #endif
 
 #ifdef HAS_PLANES
+#ifdef HAS_IMAGE_TEXTURES
+onb_t onb(float3 n);
+#endif
 bool hit_plane(const plane_t pl, float3 o, float3 D, float t_max, hit_t* h) {
   const float3 N = pl.normal.xyz, P0 = pl.point.xyz;
   const float3 to_plane = P0 - o;
@@ -232,6 +294,10 @@ bool hit_plane(const plane_t pl, float3 o, float3 D, float t_max, hit_t* h) {
     h->normal = N;
     h->material = pl.material;
     h->light = -1;  // an infinite plane is never sampled: hit only (lights.hpp)
+#ifdef HAS_IMAGE_TEXTURES  // plane.hpp: along onb(N) from the plane's point
+    const onb_t f = onb(N);
+    h->uv = (float2)(dot(h->p - P0, f.t), dot(h->p - P0, f.b));
+#endif
   }
   return true;
 }
@@ -405,6 +471,14 @@ bool hit_bvh(const scene_t* sc, float3 o, float3 D, float t_max, hit_t* h) {
     h->normal = normalize(cross(B - A, C - A));
     h->material = tri->material;
     h->light = tri->light;
+#ifdef HAS_IMAGE_TEXTURES  // mesh.hpp's texcoord(): the vertices' (u, v) by barycentrics, or these
+    if (sc->has_tri_uvs) {
+      const float4 p = sc->tri_uvs[2 * best_leaf], q = sc->tri_uvs[2 * best_leaf + 1];
+      h->uv = w * p.xy + bu * p.zw + bv * q.xy;
+    } else {
+      h->uv = (float2)(bu, bv);
+    }
+#endif
   }
   return found;
 }
@@ -431,6 +505,9 @@ bool nearest_hit(const scene_t* sc, float3 o, float3 D, hit_t* h) {
   if (hit_bvh(sc, o, D, t_max, h)) found = true;
 #endif
   if (found) h->front_face = dot(D, h->normal) < 0.0f;
+#ifdef HAS_TEXTURES
+  h->sc = sc;
+#endif
   return found;
 }
 
@@ -470,7 +547,6 @@ float2 uniform2(stream_t* g) {
 }
 
 // onb.hpp's frame around a unit n (Duff et al.): local (x, y, z) to world and back.
-typedef struct { float3 t, b, n; } onb_t;
 onb_t onb(float3 n) {
   const float sign = copysign(1.0f, n.z);
   const float a = -1.0f / (sign + n.z);
@@ -529,17 +605,112 @@ float area_to_solid_angle_pdf(float pdf_area, float distance2, float cos_light) 
 // ---------------------------------------------------------------- materials (material.hpp, bxdf.hpp)
 float3 facing(const hit_t* h) { return h->front_face ? h->normal : -h->normal; }
 
-float3 albedo(global const material_t* m, const hit_t* h) {
 #ifdef HAS_CHECKER
-  if (m->checker) {  // texture.hpp: the axis nearest the normal is dropped
-    const float3 an = fabs(h->normal);
-    const int drop = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
-    const float p[3] = {h->p.x, h->p.y, h->p.z};
-    long sum = 0;
-    for (int i = 0; i < 3; ++i)
-      if (i != drop) sum += (long)floor(p[i] / m->cell);
-    return (sum & 1) ? m->albedo_b.xyz : m->albedo_a.xyz;
+// texture.hpp's checker: the axis nearest the normal is dropped.
+float3 checker(float3 a, float3 b, float cell, const hit_t* h) {
+  const float3 an = fabs(h->normal);
+  const int drop = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
+  const float p[3] = {h->p.x, h->p.y, h->p.z};
+  long sum = 0;
+  for (int i = 0; i < 3; ++i)
+    if (i != drop) sum += (long)floor(p[i] / cell);
+  return (sum & 1) ? b : a;
+}
+#endif
+
+#ifdef HAS_IMAGE_TEXTURES
+// [listing cl-image-texture]
+// texture.hpp's lookup_bilinear: texel (i, j)'s centre at u = (i + 1/2) / W, v = 1 - (j + 1/2) / H;
+// outside [0, 1] the image repeats or its edge texels extend; a NaN or infinite coordinate reads as 0.
+float3 texel(global const texture_t* t, global const float4* texels, float i, float j) {
+  int x = (int)i, y = (int)j;
+  const int w = t->width, h = t->height;
+  if (t->repeat) x = ((x % w) + w) % w, y = ((y % h) + h) % h;
+  else x = clamp(x, 0, w - 1), y = clamp(y, 0, h - 1);
+  return texels[t->first + y * w + x].xyz;
+}
+float3 lookup_bilinear(global const texture_t* t, global const float4* texels, float2 uv) {
+  float u = isfinite(uv.x) ? uv.x : 0.0f, v = isfinite(uv.y) ? uv.y : 0.0f;
+  if (t->repeat) u -= floor(u), v -= floor(v);
+  else u = clamp(u, -1.0f, 2.0f), v = clamp(v, -1.0f, 2.0f);
+  const float x = u * (float)t->width - 0.5f, y = (1.0f - v) * (float)t->height - 0.5f;
+  const float x0 = floor(x), y0 = floor(y), fx = x - x0, fy = y - y0;
+  const float3 top = (1.0f - fx) * texel(t, texels, x0, y0) + fx * texel(t, texels, x0 + 1.0f, y0);
+  const float3 bottom =
+      (1.0f - fx) * texel(t, texels, x0, y0 + 1.0f) + fx * texel(t, texels, x0 + 1.0f, y0 + 1.0f);
+  return (1.0f - fy) * top + fy * bottom;
+}
+// [end]
+#endif
+
+#ifdef HAS_NOISE_TEXTURES
+// noise.hpp's improved Perlin noise, with its permutation packed from the CPU (gpu_scene.hpp).
+float noise_gradient(int hash, float x, float y, float z) {
+  const int h = hash & 15;
+  const float u = h < 8 ? x : y, v = h < 4 ? y : (h == 12 || h == 14 ? x : z);
+  return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
+}
+float noise_fade(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
+float perlin(global const int* p, float3 q) {
+  const float fx = floor(q.x), fy = floor(q.y), fz = floor(q.z);
+  if (!isfinite(fx + fy + fz)) return 0.0f;
+  const int X = (int)(fmod(fx, 256.0f) + 256.0f) & 255, Y = (int)(fmod(fy, 256.0f) + 256.0f) & 255,
+            Z = (int)(fmod(fz, 256.0f) + 256.0f) & 255;
+  const float x = q.x - fx, y = q.y - fy, z = q.z - fz;
+  const float u = noise_fade(x), v = noise_fade(y), w = noise_fade(z);
+  const int A = p[X] + Y, AA = p[A] + Z, AB = p[A + 1] + Z;
+  const int B = p[X + 1] + Y, BA = p[B] + Z, BB = p[B + 1] + Z;
+  const float n =
+      mix(mix(mix(noise_gradient(p[AA], x, y, z), noise_gradient(p[BA], x - 1.0f, y, z), u),
+              mix(noise_gradient(p[AB], x, y - 1.0f, z), noise_gradient(p[BB], x - 1.0f, y - 1.0f, z), u), v),
+          mix(mix(noise_gradient(p[AA + 1], x, y, z - 1.0f), noise_gradient(p[BA + 1], x - 1.0f, y, z - 1.0f), u),
+              mix(noise_gradient(p[AB + 1], x, y - 1.0f, z - 1.0f),
+                  noise_gradient(p[BB + 1], x - 1.0f, y - 1.0f, z - 1.0f), u), v),
+          w);
+  return clamp(n, -1.0f, 1.0f);
+}
+float turbulence(global const int* p, float3 q, int octaves) {
+  float sum = 0.0f, weight = 1.0f, total = 0.0f;
+  for (int i = 0; i < octaves; ++i) {
+    sum += weight * fabs(perlin(p, q));
+    total += weight;
+    weight *= 0.5f;
+    q *= 2.0f;
   }
+  return total > 0.0f ? sum / total : 0.0f;
+}
+#endif
+
+#ifdef HAS_TEXTURES
+// texture.hpp's evaluate() for a texture record.
+float3 texture_at(int i, const hit_t* h) {
+  global const texture_t* t = &h->sc->textures[i];
+#ifdef HAS_IMAGE_TEXTURES
+  if (t->kind == TEX_IMAGE) return lookup_bilinear(t, h->sc->texels, h->uv);
+#endif
+#ifdef HAS_NOISE_TEXTURES
+  if (t->kind == TEX_NOISE) {
+    global const int* p = h->sc->noise_permutation;
+    const float3 q = h->p * t->frequency;
+    const float s = t->marble ? 0.5f * (1.0f + sin(q.z + 10.0f * turbulence(p, q, t->octaves)))
+                    : t->octaves > 1 ? turbulence(p, q, t->octaves)
+                                     : 0.5f * (1.0f + perlin(p, q));
+    return (1.0f - s) * t->a.xyz + s * t->b.xyz;
+  }
+#endif
+#ifdef HAS_CHECKER
+  if (t->kind == TEX_CHECKER) return checker(t->a.xyz, t->b.xyz, t->cell, h);
+#endif
+  return t->a.xyz;
+}
+#endif
+
+float3 albedo(global const material_t* m, const hit_t* h) {
+#ifdef HAS_TEXTURES
+  if (m->albedo_texture >= 0) return texture_at(m->albedo_texture, h);
+#endif
+#ifdef HAS_CHECKER
+  if (m->checker) return checker(m->albedo_a.xyz, m->albedo_b.xyz, m->cell, h);
 #endif
   return m->albedo_a.xyz;
 }
@@ -548,7 +719,15 @@ float3 albedo(global const material_t* m, const hit_t* h) {
 float3 emitted(global const material_t* m, const hit_t* h) {
   return h->front_face || m->two_sided ? m->radiance.xyz : (float3)(0.0f);
 }
+#ifdef HAS_MICROFACETS
+bool is_microfacet(global const material_t* m) {
+  return m->kind == KIND_ROUGH_CONDUCTOR || m->kind == KIND_ROUGH_DIELECTRIC;
+}
+#endif
 bool has_density(global const material_t* m) {
+#ifdef HAS_MICROFACETS
+  if (is_microfacet(m)) return true;
+#endif
   return m->kind == KIND_LAMBERTIAN || m->kind == KIND_PHONG;
 }
 bool same_hemisphere(float3 wi, float3 wo, float3 n) { return dot(wi, n) > 0.0f && dot(wo, n) > 0.0f; }
@@ -573,41 +752,7 @@ float phong_lobe_pdf(float cos_alpha, float s) {
 }
 #endif
 
-// material.hpp's brdf_at(...).eval: f(wo, wi), zero for the materials without a density.
-float3 brdf(global const material_t* m, const hit_t* h, float3 wo, float3 wi) {
-  const float3 n = facing(h);
-  if (!same_hemisphere(wi, wo, n)) return (float3)(0.0f);
-#ifdef HAS_PHONG
-  if (m->kind == KIND_PHONG) {
-    const float s = m->shininess;
-    const float c = clamp(dot(wi, phong_mirror(wo, n)), 0.0f, 1.0f);
-    return m->albedo_a.xyz / PI_F + m->albedo_b.xyz * ((s + 2.0f) / (2.0f * PI_F) * pow(c, s));
-  }
-#endif
-  if (m->kind == KIND_LAMBERTIAN) return albedo(m, h) / PI_F;
-  return (float3)(0.0f);
-}
-// [listing cl-brdf-cos]
-float3 brdf_cos(global const material_t* m, const hit_t* h, float3 wo, float3 wi) {
-  return brdf(m, h, wo, wi) * fmax(0.0f, dot(facing(h), wi));
-}
-// The density scatter() samples wi with (the mixture's; Lambert: the lobe's weight is 0).
-float scatter_pdf(global const material_t* m, const hit_t* h, float3 wo, float3 wi) {
-  if (!has_density(m)) return 0.0f;
-  const float3 n = facing(h);
-  if (!same_hemisphere(wi, wo, n)) return 0.0f;
-  float w_lobe = 0.0f, lobe = 0.0f;
-#ifdef HAS_PHONG
-  if (m->kind == KIND_PHONG) {
-    w_lobe = glossy_probability(m);
-    lobe = phong_lobe_pdf(fmin(dot(wi, phong_mirror(wo, n)), 1.0f), m->shininess);
-  }
-#endif
-  return w_lobe * lobe + (1.0f - w_lobe) * cosine_hemisphere_pdf(dot(wi, n));
-}
-// [end]
-
-#ifdef HAS_DIELECTRIC
+#if defined(HAS_DIELECTRIC) || defined(HAS_ROUGH_DIELECTRIC)
 float cos2_transmitted(float cos_i, float eta) {
   const float c = clamp(cos_i, 0.0f, 1.0f);
   if (eta <= 1.0f) return (1.0f - eta) * (1.0f + eta) + (eta * c) * (eta * c);
@@ -634,6 +779,234 @@ bool refract_dir(float3 d, float3 n, float eta, float3* t) {
   return true;
 }
 #endif
+
+#ifdef HAS_MICROFACETS
+// [listing cl-ggx]
+// microfacet.hpp's GGX (isotropic: ax = ay = alpha), in the local frame of the facing normal.
+float ggx_D(float a, float3 h) {
+  if (!(h.z > 0.0f)) return 0.0f;
+  const float x = h.x / a, y = h.y / a, k = x * x + y * y + h.z * h.z;
+  return 1.0f / (PI_F * a * a * k * k);
+}
+float ggx_lambda(float a, float3 w) {  // t / (2 (1 + sqrt(1 + t))): no cancellation at small t
+  const float z2 = w.z * w.z, s2 = (a * w.x) * (a * w.x) + (a * w.y) * (a * w.y);
+  if (!(z2 > 0.0f)) return INFINITY;
+  const float t = s2 / z2;
+  if (isinf(t)) return INFINITY;
+  return t / (2.0f * (1.0f + sqrt(1.0f + t)));
+}
+float ggx_G1(float a, float3 w, float3 h) {
+  if (!(dot(w, h) * w.z > 0.0f)) return 0.0f;
+  return 1.0f / (1.0f + ggx_lambda(a, w));
+}
+float ggx_G2(float a, float3 wo, float3 wi, float3 h) {
+  if (!(dot(wo, h) * wo.z > 0.0f) || !(dot(wi, h) * wi.z > 0.0f)) return 0.0f;
+  return 1.0f / (1.0f + ggx_lambda(a, wo) + ggx_lambda(a, wi));
+}
+float g2_over_g1(float a, float3 wo, float3 wi) {
+  const float li = ggx_lambda(a, wi);
+  if (isinf(li)) return 0.0f;
+  return 1.0f / (1.0f + li / (1.0f + ggx_lambda(a, wo)));
+}
+// A visible normal (Heitz 2018), as ggx_t::sample_visible.
+float3 ggx_sample_visible(float a, float3 wo, float2 u) {
+  const float3 v = normalize((float3)(a * wo.x, a * wo.y, fmax(wo.z, 0.0f)));
+  const float len2 = v.x * v.x + v.y * v.y;
+  const float3 t1 = len2 > 0.0f ? (float3)(-v.y, v.x, 0.0f) / sqrt(len2) : (float3)(1.0f, 0.0f, 0.0f);
+  const float3 t2 = cross(v, t1);
+  const float r = sqrt(clamp_unit(u.x)), phi = 2.0f * PI_F * clamp_unit(u.y);
+  const float p1 = r * cos(phi), s = (1.0f + v.z) / 2.0f;
+  const float p2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - p1 * p1)) + s * (r * sin(phi));
+  const float p3 = sqrt(fmax(0.0f, 1.0f - p1 * p1 - p2 * p2));
+  const float3 n = p1 * t1 + p2 * t2 + p3 * v;
+  return normalize((float3)(a * n.x, a * n.y, fmax(n.z, 0.0f)));
+}
+// [end]
+// material.hpp's alpha_at: the number, or the roughness texture's mean, kept in [0.001, 1];
+// then ggx_t's clamp to [1e-4, 1].
+float alpha_at(global const material_t* m, const hit_t* h) {
+  float a = m->roughness;
+#ifdef HAS_TEXTURES
+  if (m->roughness_texture >= 0) {
+    const float3 c = texture_at(m->roughness_texture, h);
+    a = clamp((c.x + c.y + c.z) / 3.0f, 1e-3f, 1.0f);
+  }
+#endif
+  return clamp(a, 1e-4f, 1.0f);
+}
+#endif
+
+#ifdef HAS_ROUGH_CONDUCTOR
+// microfacet.hpp's fresnel_conductor for each channel, or Schlick from F0.
+float3 fresnel_conductor(float cos_i, float3 eta, float3 k) {
+  const float c = clamp(cos_i, 0.0f, 1.0f);
+  if (!(c > 0.0f)) return (float3)(1.0f);  // grazing: every metal is a mirror
+  const float c2 = c * c, s2 = (1.0f - c) * (1.0f + c);
+  const float3 e2 = eta * eta, k2 = k * k, d = e2 - k2 - s2;
+  const float3 a2b2 = sqrt(d * d + 4.0f * e2 * k2);
+  const float3 a = sqrt(fmax(0.0f, (a2b2 + d) / 2.0f));
+  const float3 rs = (a2b2 + c2 - 2.0f * a * c) / (a2b2 + c2 + 2.0f * a * c);
+  const float3 q = c2 * a2b2 + s2 * s2, qa = 2.0f * a * c * s2;
+  const float3 rp = rs * (q - qa) / (q + qa);
+  return clamp((rs + rp) / 2.0f, 0.0f, 1.0f);
+}
+float3 conductor_fresnel(global const material_t* m, float cos_i) {
+  if (m->schlick) {
+    const float x = 1.0f - clamp(cos_i, 0.0f, 1.0f), x2 = x * x;
+    return m->eta.xyz + (1.0f - m->eta.xyz) * (x2 * x2 * x);
+  }
+  return fresnel_conductor(cos_i, m->eta.xyz, m->k.xyz);
+}
+// [listing cl-rough-conductor]
+// rough_conductor_t: f = F D G2 / (4 cos_o cos_i), sampled by visible normals (wo.z > 0).
+float3 rough_conductor_f(global const material_t* m, float a, float3 wo, float3 wi) {
+  if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return (float3)(0.0f);
+  const float3 h = normalize_or_zero(wo + wi);
+  const float value = ggx_D(a, h) * ggx_G2(a, wo, wi, h) / (4.0f * wo.z * wi.z);
+  return value > 0.0f ? conductor_fresnel(m, dot(wo, h)) * value : (float3)(0.0f);
+}
+float rough_conductor_pdf(float a, float3 wo, float3 wi) {
+  if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
+  const float3 h = normalize_or_zero(wo + wi);
+  return ggx_G1(a, wo, h) * ggx_D(a, h) / (4.0f * wo.z);
+}
+bool rough_conductor_sample(global const material_t* m, float a, float3 wo, float2 u, float3* wi,
+                            float3* weight, float* pdf) {
+  if (!(wo.z > 0.0f)) return false;
+  const float3 h = ggx_sample_visible(a, wo, u);
+  const float cos_oh = dot(wo, h);
+  if (!(cos_oh > 0.0f)) return false;
+  *wi = reflect(-wo, h);
+  *pdf = ggx_G1(a, wo, h) * ggx_D(a, h) / (4.0f * wo.z);
+  if (!(wi->z > 0.0f) || !(*pdf > 0.0f) || !isfinite(*pdf)) return false;  // below: lost
+  *weight = conductor_fresnel(m, cos_oh) * g2_over_g1(a, wo, *wi);
+  return true;
+}
+// [end]
+#endif
+
+#ifdef HAS_ROUGH_DIELECTRIC
+// [listing cl-rough-dielectric]
+// rough_dielectric_t (Walter et al. 2007); eta = eta_t / eta_i across the surface from wo's side.
+float3 rough_half_vector(float eta, float3 wo, float3 wi) {
+  const float3 h = normalize_or_zero(wi.z > 0.0f ? wo + wi : wo + eta * wi);
+  return h.z < 0.0f ? -h : h;
+}
+float rough_dielectric_f(float a, float eta, float3 wo, float3 wi) {
+  if (!(wo.z > 0.0f) || wi.z == 0.0f) return 0.0f;
+  const float3 h = rough_half_vector(eta, wo, wi);
+  const float co = dot(wo, h), ci = dot(wi, h);
+  const float DG = ggx_D(a, h) * ggx_G2(a, wo, wi, h);
+  if (!(DG > 0.0f)) return 0.0f;
+  const float F = fresnel_dielectric(co, 1.0f / eta);
+  if (wi.z > 0.0f) return F * DG / (4.0f * wo.z * wi.z);
+  const float denom = co + eta * ci;
+  return (1.0f - F) * DG * eta * eta * fabs(ci) * co / (wo.z * -wi.z * denom * denom);
+}
+float rough_dielectric_pdf(float a, float eta, float3 wo, float3 wi) {
+  if (!(wo.z > 0.0f) || wi.z == 0.0f) return 0.0f;
+  const float3 h = rough_half_vector(eta, wo, wi);
+  const float co = dot(wo, h), ci = dot(wi, h);
+  if (!(co > 0.0f) || !(ci * wi.z > 0.0f)) return 0.0f;  // h must face both directions
+  const float visible = ggx_G1(a, wo, h) * ggx_D(a, h) / wo.z;
+  const float F = fresnel_dielectric(co, 1.0f / eta);
+  if (wi.z > 0.0f) return F * visible / 4.0f;
+  const float denom = co + eta * ci;
+  return (1.0f - F) * visible * co * eta * eta * fabs(ci) / (denom * denom);
+}
+bool rough_dielectric_sample(float a, float eta, float3 wo, float2 u, float u_lobe, float3* wi,
+                             float3* weight, float* pdf) {
+  if (!(wo.z > 0.0f)) return false;
+  const float3 h = ggx_sample_visible(a, wo, u);
+  const float co = dot(wo, h);
+  if (!(co > 0.0f)) return false;
+  const float F = fresnel_dielectric(co, 1.0f / eta);
+  const float visible = ggx_G1(a, wo, h) * ggx_D(a, h) / wo.z;
+  if (u_lobe < F) {
+    *wi = reflect(-wo, h);
+    if (!(wi->z > 0.0f)) return false;
+    *pdf = F * visible / 4.0f;
+  } else {
+    if (!refract_dir(-wo, h, 1.0f / eta, wi) || !(wi->z < 0.0f)) return false;
+    const float ci = dot(*wi, h), denom = co + eta * ci;
+    *pdf = (1.0f - F) * visible * co * eta * eta * fabs(ci) / (denom * denom);
+  }
+  if (!(*pdf > 0.0f) || !isfinite(*pdf)) return false;
+  *weight = (float3)(g2_over_g1(a, wo, *wi));
+  return true;
+}
+// [end]
+// material.hpp's rough_glass_at: eta_t / eta_i is the inside index entering, its inverse leaving.
+float rough_eta(global const material_t* m, const hit_t* h) { return h->front_face ? m->ior : 1.0f / m->ior; }
+#endif
+
+#ifdef HAS_MICROFACETS
+// material.hpp's microfacet_f_cos and microfacet_pdf, in the frame of the facing normal.
+float3 microfacet_f_cos(global const material_t* m, const hit_t* h, float3 wo, float3 wi) {
+  const float3 n = facing(h), lo = to_local(n, wo), li = to_local(n, wi);
+  const float a = alpha_at(m, h);
+#ifdef HAS_ROUGH_CONDUCTOR
+  if (m->kind == KIND_ROUGH_CONDUCTOR) return rough_conductor_f(m, a, lo, li) * fabs(li.z);
+#endif
+#ifdef HAS_ROUGH_DIELECTRIC
+  if (m->kind == KIND_ROUGH_DIELECTRIC)
+    return (float3)(rough_dielectric_f(a, rough_eta(m, h), lo, li) * fabs(li.z));
+#endif
+  return (float3)(0.0f);
+}
+float microfacet_pdf(global const material_t* m, const hit_t* h, float3 wo, float3 wi) {
+  const float3 n = facing(h), lo = to_local(n, wo), li = to_local(n, wi);
+  const float a = alpha_at(m, h);
+#ifdef HAS_ROUGH_CONDUCTOR
+  if (m->kind == KIND_ROUGH_CONDUCTOR) return rough_conductor_pdf(a, lo, li);
+#endif
+#ifdef HAS_ROUGH_DIELECTRIC
+  if (m->kind == KIND_ROUGH_DIELECTRIC) return rough_dielectric_pdf(a, rough_eta(m, h), lo, li);
+#endif
+  return 0.0f;
+}
+#endif
+
+// material.hpp's brdf_at(...).eval: f(wo, wi), zero for the materials without a density.
+float3 brdf(global const material_t* m, const hit_t* h, float3 wo, float3 wi) {
+  const float3 n = facing(h);
+  if (!same_hemisphere(wi, wo, n)) return (float3)(0.0f);
+#ifdef HAS_PHONG
+  if (m->kind == KIND_PHONG) {
+    const float s = m->shininess;
+    const float c = clamp(dot(wi, phong_mirror(wo, n)), 0.0f, 1.0f);
+    return m->albedo_a.xyz / PI_F + m->albedo_b.xyz * ((s + 2.0f) / (2.0f * PI_F) * pow(c, s));
+  }
+#endif
+  if (m->kind == KIND_LAMBERTIAN) return albedo(m, h) / PI_F;
+  return (float3)(0.0f);
+}
+// [listing cl-brdf-cos]
+float3 brdf_cos(global const material_t* m, const hit_t* h, float3 wo, float3 wi) {
+#ifdef HAS_MICROFACETS
+  if (is_microfacet(m)) return microfacet_f_cos(m, h, wo, wi);  // glass: wi may be below
+#endif
+  return brdf(m, h, wo, wi) * fmax(0.0f, dot(facing(h), wi));
+}
+// The density scatter() samples wi with (the mixture's; Lambert: the lobe's weight is 0).
+float scatter_pdf(global const material_t* m, const hit_t* h, float3 wo, float3 wi) {
+  if (!has_density(m)) return 0.0f;
+#ifdef HAS_MICROFACETS
+  if (is_microfacet(m)) return microfacet_pdf(m, h, wo, wi);
+#endif
+  const float3 n = facing(h);
+  if (!same_hemisphere(wi, wo, n)) return 0.0f;
+  float w_lobe = 0.0f, lobe = 0.0f;
+#ifdef HAS_PHONG
+  if (m->kind == KIND_PHONG) {
+    w_lobe = glossy_probability(m);
+    lobe = phong_lobe_pdf(fmin(dot(wi, phong_mirror(wo, n)), 1.0f), m->shininess);
+  }
+#endif
+  return w_lobe * lobe + (1.0f - w_lobe) * cosine_hemisphere_pdf(dot(wi, n));
+}
+// [end]
+
 
 typedef struct {
   float3 direction;  // unit, away from the surface
@@ -662,6 +1035,24 @@ bool scatter(global const material_t* m, float3 d, const hit_t* h, stream_t* g, 
       s->weight = albedo(m, h);
       return true;
     }
+#ifdef HAS_MICROFACETS
+    if (is_microfacet(m)) {  // a visible GGX normal (u); the glass picks its lobe with u_lobe
+      const float3 wo = to_local(n, -d);
+      const float a = alpha_at(m, h);
+      float3 wi = (float3)(0.0f);
+      bool ok = false;
+#ifdef HAS_ROUGH_CONDUCTOR
+      if (m->kind == KIND_ROUGH_CONDUCTOR) ok = rough_conductor_sample(m, a, wo, u, &wi, &s->weight, &s->pdf);
+#endif
+#ifdef HAS_ROUGH_DIELECTRIC
+      if (m->kind == KIND_ROUGH_DIELECTRIC)
+        ok = rough_dielectric_sample(a, rough_eta(m, h), wo, u, u_lobe, &wi, &s->weight, &s->pdf);
+#endif
+      if (!ok) return false;  // sent below the surface by a facet: absorbed
+      s->direction = to_world(n, wi);
+      return true;
+    }
+#endif
 #ifdef HAS_PHONG
     // phong: Lambert + normalised Phong, sampled as their mixture (u.x chooses, then is reused)
     const float3 wo = -d;
@@ -708,6 +1099,108 @@ bool scatter(global const material_t* m, float3 d, const hit_t* h, stream_t* g, 
 }
 // [end]
 
+// ---------------------------------------------------------------- the environment (environment.hpp)
+#ifdef HAS_ENVIRONMENT
+// [listing cl-environment]
+// The map's frame turns by the rotation about +y; (u, v) = (phi / 2 pi, theta / pi) as to_uv().
+float3 env_to_local(const environment_t* e, float3 w) {
+  const float c = e->cos_rotation, s = e->sin_rotation;
+  return (float3)(c * w.x - s * w.z, w.y, s * w.x + c * w.z);
+}
+float3 env_to_world(const environment_t* e, float3 l) {
+  const float c = e->cos_rotation, s = e->sin_rotation;
+  return (float3)(c * l.x + s * l.z, l.y, -s * l.x + c * l.z);
+}
+float2 env_uv(float3 l) {
+  float phi = atan2(l.x, -l.z);
+  if (phi < 0.0f) phi += 2.0f * PI_F;
+  const float theta = atan2(hypot(l.x, l.z), l.y);  // hypot: no underflow of a tiny sin
+  return (float2)(fmin(phi / (2.0f * PI_F), 1.0f), fmin(theta / PI_F, 1.0f));
+}
+// The radiance seen looking along w: bilinear, wrapping in phi, clamped at the poles.
+float3 env_radiance(const scene_t* sc, float3 w) {
+  const environment_t e = *sc->env;
+  if (e.is_constant) return e.radiance.xyz;
+  const float2 uv = env_uv(env_to_local(&e, w));
+  const float x = uv.x * (float)e.width - 0.5f, y = uv.y * (float)e.height - 0.5f;
+  const float fx = floor(x), fy = floor(y), tx = x - fx, ty = y - fy;
+  const int x0 = (((int)fx % e.width) + e.width) % e.width, x1 = (x0 + 1) % e.width;
+  const int y0 = clamp((int)fy, 0, e.height - 1), y1 = clamp((int)fy + 1, 0, e.height - 1);
+  global const float4* t = sc->texels + e.first;
+  const float3 top = (1.0f - tx) * t[y0 * e.width + x0].xyz + tx * t[y0 * e.width + x1].xyz;
+  const float3 bottom = (1.0f - tx) * t[y1 * e.width + x0].xyz + tx * t[y1 * e.width + x1].xyz;
+  return (1.0f - ty) * top + ty * bottom;
+}
+
+// distribution_1d::sample on the packed bins f[n] and cdf[n + 1] (gpu_scene.hpp's env_tables).
+float sample_1d(global const float* f, global const float* cdf, float total, int n, float u, float* pdf,
+                int* bin) {
+  const float target = clamp_unit(u) * total;
+  int lo = 0, hi = n + 1;  // upper_bound: the first entry of the CDF above target
+  while (lo < hi) {
+    const int mid = (lo + hi) / 2;
+    if (cdf[mid] > target) hi = mid;
+    else lo = mid + 1;
+  }
+  int i = clamp(lo - 1, 0, n - 1);
+  while (f[i] == 0.0f && i > 0) --i;  // target rounded to the total: back to the last weighted bin
+  const float t = f[i] > 0.0f ? clamp((target - cdf[i]) / f[i], 0.0f, 1.0f) : 0.0f;
+  *bin = i;
+  *pdf = f[i] * (float)n / total;
+  return fmin(((float)i + t) / (float)n, 0x1.fffffep-1f);
+}
+// The tables: the marginal's bins [H] and CDF [H + 1], each row's total [H], the rows' bins
+// [H][W] and CDFs [H][W + 1].
+#define ENV_MARGINAL_F(e, T) (T)
+#define ENV_MARGINAL_CDF(e, T) ((T) + (e).height)
+#define ENV_ROW_TOTAL(e, T) ((T) + 2 * (e).height + 1)
+#define ENV_ROW_F(e, T, v) ((T) + 3 * (e).height + 1 + (v) * (e).width)
+#define ENV_ROW_CDF(e, T, v) ((T) + 3 * (e).height + 1 + (e).height * (e).width + (v) * ((e).width + 1))
+
+// environment_map::sample: a direction with density pdf per steradian (0: none).
+float3 env_sample(const scene_t* sc, float2 u, float* pdf) {
+  const environment_t e = *sc->env;
+  if (e.is_constant) {  // uniform over the sphere
+    const float u0 = clamp_unit(u.x), z = 1.0f - 2.0f * u0, s = 2.0f * sqrt(u0 * (1.0f - u0));
+    const float phi = 2.0f * PI_F * clamp_unit(u.y);
+    *pdf = 1.0f / (4.0f * PI_F);
+    return (float3)(s * cos(phi), s * sin(phi), z);
+  }
+  global const float* T = sc->env_tables;
+  float pv = 0.0f, pu = 0.0f;
+  int row = 0, col = 0;
+  const float v =
+      sample_1d(ENV_MARGINAL_F(e, T), ENV_MARGINAL_CDF(e, T), e.marginal_total, e.height, u.y, &pv, &row);
+  const float x = sample_1d(ENV_ROW_F(e, T, row), ENV_ROW_CDF(e, T, row), ENV_ROW_TOTAL(e, T)[row], e.width, u.x,
+                            &pu, &col);
+  // sinpi(v) = sin(pi v) without pi's rounding in float: next to a pole sin(PI_F v) would be
+  // off by 1e-7 absolute, which is tens of per cent of the density there.
+  const float sin_theta = sinpi(v), p_uv = pv * pu;
+  if (!(sin_theta > 0.0f) || !(p_uv > 0.0f)) {
+    *pdf = 0.0f;
+    return (float3)(0.0f);
+  }
+  *pdf = p_uv / (2.0f * PI_F * PI_F * sin_theta);
+  return env_to_world(&e, (float3)(sinpi(2.0f * x) * sin_theta, cospi(v), -cospi(2.0f * x) * sin_theta));
+}
+// environment_map::pdf: the density of env_sample for direction w.
+float env_pdf(const scene_t* sc, float3 w) {
+  const environment_t e = *sc->env;
+  if (e.is_constant) return 1.0f / (4.0f * PI_F);
+  const float3 l = env_to_local(&e, w);
+  const float sin_theta = hypot(l.x, l.z);
+  if (!(sin_theta > 0.0f)) return 0.0f;
+  const float2 uv = env_uv(l);
+  global const float* T = sc->env_tables;
+  const int row = min((int)(uv.y * (float)e.height), e.height - 1);
+  const int col = min((int)(uv.x * (float)e.width), e.width - 1);
+  const float p_v = ENV_MARGINAL_F(e, T)[row] * (float)e.height / e.marginal_total;
+  const float p_u = ENV_ROW_F(e, T, row)[col] * (float)e.width / ENV_ROW_TOTAL(e, T)[row];
+  return p_v * p_u / (2.0f * PI_F * PI_F * sin_theta);
+}
+// [end]
+#endif
+
 // ---------------------------------------------------------------- lights (lights.hpp)
 typedef struct {
   float3 wi;        // unit, towards the light
@@ -742,6 +1235,17 @@ bool sample_one(const scene_t* sc, int i, const hit_t* h, float2 u, light_sample
   }
 #endif
   s->delta = false;
+#ifdef HAS_ENVIRONMENT
+  if (l->kind == LIGHT_ENVIRONMENT) {  // sample_environment: the shadow ray never ends
+    s->wi = env_sample(sc, u, &s->pdf);
+    if (!(s->pdf > 0.0f) || !isfinite(s->pdf)) return false;
+    s->Le = env_radiance(sc, s->wi);
+    s->origin = offset_origin(h->p, h->p_error, h->normal, s->wi);
+    s->direction = s->wi;
+    s->t_max = INFINITY;
+    return true;
+  }
+#endif
   global const material_t* m = &sc->materials[l->material];
   hit_t lh;  // the light's surface at the sampled point: its side decides what it emits
 #ifdef HAS_SPHERE_LIGHTS
@@ -886,7 +1390,18 @@ float3 path_radiance(const scene_t* sc, float3 o, float3 D, stream_t* g) {
   float3 from = (float3)(0.0f);  // the point it left from
   for (int bounce = 0;; ++bounce) {
     hit_t h;
-    if (!nearest_hit(sc, o, D, &h)) return L + beta * sc->background;  // no sampler knows the sky
+    if (!nearest_hit(sc, o, D, &h)) {
+#ifdef HAS_ENVIRONMENT
+      if (sc->env->present) {  // the environment light, found by this ray: as emission below
+        const float3 Le = env_radiance(sc, D);
+        const int li = sc->env->light;
+        if (!nee || specular || li < 0) return L + beta * Le;
+        if (mis) return L + beta * Le * power_heuristic(bsdf_pdf, env_pdf(sc, D) * sc->lights[li].pdf);
+        return L;
+      }
+#endif
+      return L + beta * sc->background;  // no sampler knows a plain background
+    }
     global const material_t* m = &sc->materials[h.material];
 #ifdef HAS_EMITTERS
     // Emission found by this ray: all of it, its MIS share, or none (nee: the light sample at
@@ -943,11 +1458,28 @@ kernel void render(global const sphere_t* spheres, global const quad_t* quads,
                    global const camera_t* camera, global float4* accum, global float4* accum_sq,
                    global uchar4* display, int n_spheres, int n_quads, int n_planes, int n_lights,
                    int n_nodes, uint width, uint height, uint sample_offset, uint samples, ulong seed,
-                   float4 background) {
+                   float4 background, global const texture_t* textures, global const float4* texels,
+                   global const float4* tri_uvs, int has_tri_uvs, global const environment_t* env,
+                   global const float* env_tables, global const int* noise_permutation) {
   const uint x = get_global_id(0), y = get_global_id(1);
   if (x >= width || y >= height) return;
-  const scene_t sc = {spheres, quads, planes, tris, nodes, materials, lights, light_tris,
-                      n_spheres, n_quads, n_planes, n_lights, n_nodes, background.xyz};
+  scene_t sc = {spheres, quads, planes, tris, nodes, materials, lights, light_tris,
+                n_spheres, n_quads, n_planes, n_lights, n_nodes, background.xyz};
+#ifdef HAS_TEXTURES
+  sc.textures = textures;
+  sc.noise_permutation = noise_permutation;
+#endif
+#if defined(HAS_TEXTURES) || defined(HAS_ENVIRONMENT)
+  sc.texels = texels;
+#endif
+#ifdef HAS_IMAGE_TEXTURES
+  sc.tri_uvs = tri_uvs;
+  sc.has_tri_uvs = has_tri_uvs;
+#endif
+#ifdef HAS_ENVIRONMENT
+  sc.env = env;
+  sc.env_tables = env_tables;
+#endif
   const camera_t cam = *camera;
   float4 sum = (float4)(0.0f), sum_sq = (float4)(0.0f);  // sum.w: samples that were finite
 #ifdef WEAK_SEED
@@ -996,11 +1528,78 @@ kernel void layout(global uint* out) {
   light_t v_light_t;
   light_triangle_t v_light_triangle_t;
   camera_t v_camera_t;
-  const uint values[24] = {SIZE_AND(sphere_t, material), SIZE_AND(sphere_t, light),
+  texture_t v_texture_t;
+  environment_t v_environment_t;
+  const uint values[36] = {SIZE_AND(sphere_t, material), SIZE_AND(sphere_t, light),
                            SIZE_AND(quad_t, material), SIZE_AND(plane_t, material),
                            SIZE_AND(triangle_t, material), SIZE_AND(triangle_t, light),
                            SIZE_AND(node4_t, count), SIZE_AND(material_t, fuzz),
                            SIZE_AND(material_t, shininess), SIZE_AND(light_t, kind),
-                           SIZE_AND(light_t, cdf), SIZE_AND(light_triangle_t, c)};
-  for (int i = 0; i < 24; ++i) out[i] = values[i];
+                           SIZE_AND(light_t, cdf), SIZE_AND(light_triangle_t, c),
+                           SIZE_AND(material_t, eta), SIZE_AND(material_t, albedo_texture),
+                           SIZE_AND(material_t, roughness), SIZE_AND(texture_t, kind),
+                           SIZE_AND(texture_t, cell), SIZE_AND(environment_t, cos_rotation)};
+  for (int i = 0; i < 36; ++i) out[i] = values[i];
 }
+
+#ifdef PROBES
+// For tests/test_realtime.cpp (built with -DPROBES, never in a render): the environment's and the
+// image texture's functions on given numbers, to hold against environment.hpp and texture.hpp
+// at the extremes (the poles, u next to 1, empty bins, NaN and huge texture coordinates).
+#ifdef HAS_ENVIRONMENT
+// in[i]: (u.x, u.y) for env_sample; in[n + i]: a direction for env_pdf and env_radiance.
+// out[3i] = (w, pdf) sampled; out[3i + 1].x = env_pdf(w); out[3i + 2] = (radiance at in[n + i], pdf there).
+kernel void probe_environment(global const environment_t* env, global const float* env_tables,
+                              global const float4* texels, global const float4* in, global float4* out, int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  scene_t sc;
+  sc.env = env;
+  sc.env_tables = env_tables;
+  sc.texels = texels;
+  float pdf = 0.0f;
+  const float3 w = env_sample(&sc, in[i].xy, &pdf);
+  out[3 * i] = (float4)(w, pdf);
+  out[3 * i + 1] = (float4)(env_pdf(&sc, w), 0.0f, 0.0f, 0.0f);
+  const float3 d = in[n + i].xyz;
+  out[3 * i + 2] = (float4)(env_radiance(&sc, d), env_pdf(&sc, d));
+}
+#endif
+#if defined(HAS_ROUGH_CONDUCTOR) && defined(HAS_ROUGH_DIELECTRIC)
+// Case i in the local frame: in[3i] = (wo, alpha), in[3i + 1] = (wi, u_lobe), in[3i + 2] =
+// (u.x, u.y, eta, material): materials[0] a rough conductor, the glass's eta given here.
+// out[4i] = (f, pdf) for (wo, wi); out[4i + 1] = (sampled wi, pdf), out[4i + 2] = (weight, ok).
+kernel void probe_microfacet(global const material_t* materials, global const float4* in, global float4* out,
+                             int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  const float4 a = in[3 * i], b = in[3 * i + 1], c = in[3 * i + 2];
+  const float3 wo = a.xyz, wi = b.xyz;
+  const float alpha = a.w, eta = c.z;
+  float3 f, sw = (float3)(0.0f), weight = (float3)(0.0f);
+  float pdf, spdf = 0.0f;
+  bool ok;
+  if (c.w == 0.0f) {
+    f = rough_conductor_f(materials, alpha, wo, wi);
+    pdf = rough_conductor_pdf(alpha, wo, wi);
+    ok = rough_conductor_sample(materials, alpha, wo, c.xy, &sw, &weight, &spdf);
+  } else {
+    f = (float3)(rough_dielectric_f(alpha, eta, wo, wi));
+    pdf = rough_dielectric_pdf(alpha, eta, wo, wi);
+    ok = rough_dielectric_sample(alpha, eta, wo, c.xy, b.w, &sw, &weight, &spdf);
+  }
+  out[4 * i] = (float4)(f, pdf);
+  out[4 * i + 1] = (float4)(sw, spdf);
+  out[4 * i + 2] = (float4)(weight, ok ? 1.0f : 0.0f);
+  out[4 * i + 3] = (float4)(0.0f);
+}
+#endif
+#ifdef HAS_IMAGE_TEXTURES
+// out[i] = lookup_bilinear(textures[0], uv[i])
+kernel void probe_image(global const texture_t* t, global const float4* texels, global const float2* uv,
+                        global float4* out, int n) {
+  const int i = get_global_id(0);
+  if (i < n) out[i] = (float4)(lookup_bilinear(t, texels, uv[i]), 0.0f);
+}
+#endif
+#endif

@@ -10,16 +10,23 @@
 #include <zraka/convergence.hpp>
 #include <zraka/default_scene.hpp>
 #include <zraka/image.hpp>
+#include <zraka/image_error.hpp>
 #include <zraka/image_io.hpp>
 #include <zraka/input_file.hpp>
 #include <zraka/limits.hpp>
 #include <zraka/mitsuba_export.hpp>
 #include <zraka/named_scenes.hpp>
+#include <zraka/obj_file.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/render.hpp>
+#include <zraka/scene_registry.hpp>
 #if defined(ZRAKA_COMPILED_MESH_FILE)  // built with assimp
 #include <zraka/mesh_file.hpp>
 #endif
 #if defined(ZRAKA_COMPILED_SCENE_FILE)  // built with yaml-cpp
+#include <zraka/scene_argument.hpp>
 #include <zraka/scene_file.hpp>
+#endif
+#if defined(ZRAKA_COMPILED_MITSUBA_XML)  // and pugixml
+#include <zraka/mitsuba_xml.hpp>
 #endif

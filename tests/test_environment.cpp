@@ -280,11 +280,13 @@ TEST_CASE("environment: one light of the light set, chosen by power; its sample'
   CHECK(whitted_radiance(sc, lw, ray({5, 5, 5}, {0, 1, 0}), g, whitted_options{}, rays) == rgb(0.5f));
 }
 
-TEST_CASE("environment: the realtime packer refuses it by name") {
+TEST_CASE("environment: the realtime packer takes it (its tables: test_gpu_scene; its images: test_realtime)") {
   scene sc;
   sc.add(sphere{{0, 0, 0}, 1}, sc.add_material(material::lambertian(rgb(0.5f))));
   sc.environment = std::make_shared<environment_map>(environment_map::constant(rgb(1)));
-  CHECK_THROWS_WITH(pack_scene(sc, 16, 16, path_options{}), doctest::Contains("environment light ('color')"));
+  const gpu_scene g = pack_scene(sc, 16, 16, path_options{});
+  CHECK(g.environment.present == 1);
+  CHECK(g.features.environment);
 }
 
 TEST_CASE("environment: scene files give a map or a colour; the resolved scene loads again") {

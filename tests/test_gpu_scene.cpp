@@ -3,11 +3,13 @@
 // here (tests/test_realtime.cpp runs the kernel).
 #include <zraka/cornell.hpp>
 #include <zraka/gpu_scene.hpp>
+#include <zraka/medium.hpp>
 #include <zraka/realtime.hpp>
 
 #include <doctest/doctest.h>
 
 #include <cstring>
+#include <limits>
 
 using namespace zraka;
 
@@ -209,9 +211,148 @@ TEST_CASE("what the kernel cannot run is an error naming it: user shapes, custom
   scene far;
   far.add(sphere{{1e300, 0, 0}, 1}, far.add_material(material::lambertian(rgb(0.5f))));
   CHECK_THROWS_WITH_AS(pack_scene(far, 8, 8, depth(4)), doctest::Contains("sphere 0 does not fit in float"), error);
-  scene marble;
-  marble.add(sphere{{0, 0, -3}, 1}, marble.add_material(material::lambertian(texture::noise(rgb(0), rgb(1), 2.0, 4, true))));
-  CHECK_THROWS_WITH_AS(pack_scene(marble, 8, 8, depth(4)), doctest::Contains("material 0 has a marble texture"), error);
+  scene fog;
+  fog.add(sphere{{0, 0, -3}, 1}, fog.add_material(material::lambertian(rgb(0.5f))));
+  medium m;
+  m.name = "fog";
+  m.sigma_s = rgb(0.1f);
+  fog.global_medium = fog.add_medium(m);
+  CHECK_THROWS_WITH_AS(pack_scene(fog, 8, 8, depth(4)), doctest::Contains("participating media ('fog')"), error);
+  scene hot;  // an image texel beyond float (an HDR file may hold one): refused, not rendered as inf
+  auto img = std::make_shared<image>(2, 2, rgb(0.5f));
+  img->at(1, 0) = rgb(std::numeric_limits<float>::infinity(), 0, 0);
+  hot.add(sphere{{0, 0, -3}, 1}, hot.add_material(material::lambertian(texture::image_map(img, true, "hot.hdr"))));
+  CHECK_THROWS_WITH_AS(pack_scene(hot, 8, 8, depth(4)), doctest::Contains("a texel of a texture"), error);
+}
+
+// ---------------------------------------------------------------- the appearance of chapter 5
+TEST_CASE("rough materials: the kind, the alpha, the Fresnel preset or F0, and their switches") {
+  scene sc;
+  const int gold = sc.add_material(material::rough_conductor(0.2, *find_metal("gold")));
+  const int f0 = sc.add_material(material::rough_conductor(0.4, conductor_fresnel::from_f0(rgb(0.9f, 0.6f, 0.3f))));
+  const int glass = sc.add_material(material::rough_dielectric(0.1, 1.5));
+  sc.add(sphere{{-1, 0, -3}, 0.5}, gold);
+  sc.add(sphere{{0, 0, -3}, 0.5}, f0);
+  sc.add(sphere{{1, 0, -3}, 0.5}, glass);
+  const gpu_scene g = pack_scene(sc, 8, 8, depth(4));
+  const gpu_material& a = g.materials[std::size_t(gold)];
+  CHECK(a.kind == gpu_rough_conductor);
+  CHECK(a.roughness == 0.2f);
+  CHECK(a.schlick == 0);
+  CHECK(a.eta.x == find_metal("gold")->eta.x);
+  CHECK(a.k.z == find_metal("gold")->k.z);
+  CHECK(a.roughness_texture == -1);
+  CHECK(g.materials[std::size_t(f0)].schlick == 1);
+  CHECK(g.materials[std::size_t(f0)].eta.y == 0.6f);  // F0 travels in eta
+  CHECK(g.materials[std::size_t(glass)].kind == gpu_rough_dielectric);
+  CHECK(g.materials[std::size_t(glass)].ior == 1.5f);
+  const std::string o = build_options(g.features);
+  CHECK(has(o, "-DHAS_ROUGH_CONDUCTOR"));
+  CHECK(has(o, "-DHAS_ROUGH_DIELECTRIC"));
+  CHECK_FALSE(has(o, "-DHAS_TEXTURES"));
+  CHECK_FALSE(has(o, "-DHAS_ENVIRONMENT"));
+}
+
+TEST_CASE("image and noise textures: texels as linear floats, a record per texture, triangle uvs") {
+  scene sc;
+  auto img = std::make_shared<image>(3, 2);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) img->at(x, y) = rgb(0.1f * float(x), 0.5f * float(y), 0.25f);
+  const int grid = sc.add_material(material::lambertian(texture::image_map(img, false, "grid.png")));
+  material rough = material::rough_conductor(0.3, *find_metal("silver"));
+  rough.roughness_map = texture::noise(rgb(0.05f), rgb(0.4f), 3.0, 3, false);
+  const int metal = sc.add_material(rough);
+  sc.add(quad{{-1, -1, -3}, {2, 0, 0}, {0, 2, 0}}, grid);
+  mesh m;  // one triangle with texture coordinates
+  m.positions = {{0, 0, -2}, {1, 0, -2}, {0, 1, -2}};
+  m.texcoords = {{0.25, 0.5}, {0.75, 0.5}, {0.25, 1.0}};
+  m.triangles = {{0, 1, 2}};
+  sc.add(m, grid);
+  sc.add(sphere{{0, 0, -5}, 1}, metal);
+  const gpu_scene g = pack_scene(sc, 8, 8, depth(4));
+  REQUIRE(g.textures.size() == 2);
+  const gpu_texture& t = g.textures[std::size_t(g.materials[std::size_t(grid)].albedo_texture)];
+  CHECK(t.kind == gpu_tex_image);
+  CHECK(t.width == 3);
+  CHECK(t.height == 2);
+  CHECK(t.repeat == 0);
+  REQUIRE(g.texels.size() == 6);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) {
+      const gpu_float4& v = g.texels[std::size_t(t.first + y * 3 + x)];
+      CHECK(v.x == img->at(x, y).x);
+      CHECK(v.y == img->at(x, y).y);
+    }
+  const gpu_texture& n = g.textures[std::size_t(g.materials[std::size_t(metal)].roughness_texture)];
+  CHECK(n.kind == gpu_tex_noise);
+  CHECK(n.octaves == 3);
+  CHECK(n.frequency == 3.0f);
+  REQUIRE(g.noise_permutation.size() == 512);
+  for (std::size_t i = 0; i < 512; ++i) CHECK(g.noise_permutation[i] == int(detail::noise_permutation()[i]));
+  REQUIRE(g.triangle_uvs.size() == 2);  // the mesh's one triangle: its vertices' (u, v)
+  CHECK(g.triangle_uvs[0].x == 0.25f);
+  CHECK(g.triangle_uvs[0].z == 0.75f);
+  CHECK(g.triangle_uvs[1].y == 1.0f);
+  const std::string o = build_options(g.features);
+  for (const char* f : {"-DHAS_TEXTURES", "-DHAS_IMAGE_TEXTURES", "-DHAS_NOISE_TEXTURES", "-DHAS_ROUGH_CONDUCTOR"})
+    CHECK(has(o, f));
+  CHECK_FALSE(has(o, "-DHAS_ROUGH_DIELECTRIC"));
+  // A texture only an unused material has is packed, but switches nothing on.
+  scene plain;
+  plain.add_material(material::lambertian(texture::image_map(img, true)));
+  plain.add(sphere{{0, 0, -3}, 1}, plain.add_material(material::lambertian(rgb(0.5f))));
+  CHECK_FALSE(has(build_options(pack_scene(plain, 4, 4, depth(2)).features), "-DHAS_TEXTURES"));
+}
+
+TEST_CASE("the environment: its texels and distribution_2d's tables as they are, and its light") {
+  scene sc;
+  sc.add(sphere{{0, 0, -3}, 1}, sc.add_material(material::lambertian(rgb(0.5f))));
+  image sky(4, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 4; ++x) sky.at(x, y) = rgb(float(1 + x + 4 * y));
+  sc.environment = std::make_shared<environment_map>(environment_map::from_image(sky, "sky.hdr", 0.5f, 30));
+  const gpu_scene g = pack_scene(sc, 8, 8, depth(4));
+  const environment_map& e = *sc.environment;
+  const gpu_environment& ge = g.environment;
+  CHECK(ge.present == 1);
+  CHECK(ge.is_constant == 0);
+  CHECK(ge.width == 4);
+  CHECK(ge.height == 3);
+  CHECK(ge.cos_rotation == float(e.cos_rotation()));
+  CHECK(ge.sin_rotation == float(e.sin_rotation()));
+  REQUIRE(g.texels.size() == 12);
+  CHECK(g.texels[std::size_t(ge.first + 5)].x == e.map().at(1, 1).x);  // scaled by 0.5
+  CHECK(g.texels[std::size_t(ge.first + 5)].x == 3.0f);
+  // marginal bins [H], its CDF [H + 1], row totals [H], rows' bins [H][W], rows' CDFs [H][W + 1]
+  const std::size_t W = 4, H = 3;
+  REQUIRE(g.env_tables.size() == H + (H + 1) + H + H * W + H * (W + 1));
+  const distribution_2d& d = e.distribution();
+  CHECK(ge.marginal_total == float(d.marginal().total()));
+  for (std::size_t v = 0; v < H; ++v) {
+    CHECK(g.env_tables[v] == float(d.marginal().bins()[v]));
+    CHECK(g.env_tables[H + v + 1] == float(d.marginal().cdf()[v + 1]));
+    CHECK(g.env_tables[2 * H + 1 + v] == float(d.row(v).total()));
+    for (std::size_t u = 0; u < W; ++u) {
+      CHECK(g.env_tables[3 * H + 1 + v * W + u] == float(d.row(v).bins()[u]));
+      CHECK(g.env_tables[3 * H + 1 + H * W + v * (W + 1) + u + 1] == float(d.row(v).cdf()[u + 1]));
+    }
+  }
+  REQUIRE(g.lights.size() == 1);  // the environment is the only light
+  CHECK(g.lights[0].kind == gpu_light_environment);
+  CHECK(ge.light == 0);
+  CHECK(g.lights[0].pdf == 1.0f);
+  CHECK(has(build_options(g.features), "-DHAS_ENVIRONMENT"));
+  // A constant sky: its colour, sampled uniformly; a black one is seen but not a light.
+  sc.environment = std::make_shared<environment_map>(environment_map::constant(rgb(0.25f)));
+  const gpu_scene c = pack_scene(sc, 8, 8, depth(4));
+  CHECK(c.environment.is_constant == 1);
+  CHECK(c.environment.radiance.y == 0.25f);
+  CHECK(c.env_tables.empty());
+  sc.environment = std::make_shared<environment_map>(environment_map::constant(rgb(0)));
+  const gpu_scene dark = pack_scene(sc, 8, 8, depth(4));
+  CHECK(dark.environment.present == 1);
+  CHECK(dark.environment.light == -1);
+  CHECK(dark.lights.empty());
 }
 
 TEST_CASE("extreme case: an empty scene packs to empty arrays and the bare options") {

@@ -88,7 +88,7 @@ TEST_CASE("mitsuba_export: a homogeneous medium is written with the material tha
   CHECK(count(j, "\"interior\": -1") == 1);  // the emitter bounds no medium
 }
 
-TEST_CASE("mitsuba_export: a density grid, an environment and a rough material are refused by name") {
+TEST_CASE("mitsuba_export: a density grid is refused by name") {
   scene grid = small_scene();
   medium smoke;
   smoke.name = "smoke";
@@ -96,18 +96,101 @@ TEST_CASE("mitsuba_export: a density grid, an environment and a rough material a
   smoke.density = std::make_shared<density_grid>(density_grid::noise(aabb{vec3(-1.0), vec3(1.0)}, 4, 2.0, 1));
   grid.add_medium(smoke);
   CHECK_THROWS_WITH_AS(mitsuba_scene_json(grid, 8, 8, 1), doctest::Contains("medium 'smoke' is a density grid"), error);
-
-  scene sky = small_scene();
-  sky.environment = std::make_shared<environment_map>(environment_map::constant(rgb(1.0f), 1.0f, 0.0));
-  CHECK_THROWS_WITH_AS(mitsuba_scene_json(sky, 8, 8, 1), doctest::Contains("environment light"), error);
-
-  scene rough = small_scene();
-  rough.materials[0].kind = material_kind::rough_conductor;
-  CHECK_THROWS_WITH_AS(mitsuba_scene_json(rough, 8, 8, 1), doctest::Contains("is a rough_conductor, which cannot be exported yet"), error);
 }
 
-TEST_CASE("mitsuba_export: image and noise textures are refused by name") {
+TEST_CASE("mitsuba_export: rough materials are written with alpha and the conductor's complex index") {
   scene sc = small_scene();
-  sc.materials[0].albedo = texture::noise(rgb(0), rgb(1), 2.0, 3, true);
-  CHECK_THROWS_WITH_AS(mitsuba_scene_json(sc, 8, 8, 1), doctest::Contains("material 0 has a marble texture"), error);
+  sc.materials.push_back(material::rough_conductor(0.3, *find_metal("gold")));
+  sc.materials.push_back(material::rough_dielectric(0.2, 1.5));
+  const std::string j = mitsuba_scene_json(sc, 8, 8, 1);
+  CHECK(count(j, "\"type\": \"rough_conductor\"") == 1);
+  CHECK(count(j, "\"type\": \"rough_dielectric\"") == 1);
+  CHECK(number_after(j, "\"alpha\": ") == 0.3);
+  CHECK(number_after(j, "\"eta\": [") == double(metal_presets()[0].eta.x));  // gold's, to the last bit
+  CHECK(number_after(j, "\"k\": [") == double(metal_presets()[0].k.x));
+  CHECK(count(j, "\"alpha\": 0.20000000000000001") == 1);
+  CHECK(count(j, "\"eta\"") == 1);  // the dielectric has an ior, no complex index
+}
+
+TEST_CASE("mitsuba_export: an RGB f0, a roughness texture, a noise texture are refused by name") {
+  scene f0 = small_scene();
+  f0.material_names = {"brass"};
+  f0.materials[0] = material::rough_conductor(0.2, conductor_fresnel::from_f0(rgb(0.9f, 0.7f, 0.3f)));
+  CHECK_THROWS_WITH_AS(mitsuba_scene_json(f0, 8, 8, 1), doctest::Contains("material 'brass' is a rough_conductor given by an RGB f0"), error);
+
+  scene rough_map = small_scene();
+  rough_map.materials[0] = material::rough_dielectric(0.2, 1.5);
+  rough_map.materials[0].roughness_map = texture::noise(rgb(0.1f), rgb(0.5f), 2.0, 1, false);
+  CHECK_THROWS_WITH_AS(mitsuba_scene_json(rough_map, 8, 8, 1), doctest::Contains("material 0 has a roughness texture (a noise texture)"), error);
+
+  scene marble = small_scene();
+  marble.materials[0].albedo = texture::noise(rgb(0), rgb(1), 2.0, 3, true);
+  CHECK_THROWS_WITH_AS(mitsuba_scene_json(marble, 8, 8, 1), doctest::Contains("material 0 has a marble texture"), error);
+}
+
+namespace {
+// A 2x1 image: a red texel on the left, a blue one on the right.
+std::shared_ptr<const image> two_texels() {
+  auto img = std::make_shared<image>(2, 1);
+  img->at(0, 0) = rgb(1.0f, 0.0f, 0.0f);
+  img->at(1, 0) = rgb(0.0f, 0.0f, 0.25f);
+  return img;
+}
+}  // namespace
+
+TEST_CASE("mitsuba_export: an image texture on a lambertian quad is written as its linear texels") {
+  scene sc = small_scene();
+  sc.spheres.clear(), sc.triangles.clear();  // textures go on quads only
+  sc.materials[0] = material::lambertian(texture::image_map(two_texels(), false, "a \"quoted\" name.png"));
+  sc.quads[0].material = 0;
+  const std::string j = mitsuba_scene_json(sc, 8, 8, 1);
+  CHECK(j.find("\"texture\": {\"source\": \"a \\\"quoted\\\" name.png\", \"repeat\": false, \"width\": 2, \"height\": 1, "
+               "\"texels\": [1, 0, 0, 0, 0, 0.25]}") != std::string::npos);
+  CHECK(count(j, "\"texture\"") == 1);  // the emitter has none
+  CHECK(count(j, "{") == count(j, "}"));
+  CHECK(count(j, "[") == count(j, "]"));
+}
+
+TEST_CASE("mitsuba_export: an image texture anywhere but on a lambertian quad is refused by name") {
+  scene on_sphere = small_scene();
+  on_sphere.material_names = {"grid"};
+  on_sphere.materials[0] = material::lambertian(texture::image_map(two_texels(), true, "uv-grid.png"));
+  CHECK_THROWS_WITH_AS(mitsuba_scene_json(on_sphere, 8, 8, 1),
+                       doctest::Contains("material 'grid' has an image texture ('uv-grid.png') on a sphere"), error);
+  on_sphere.spheres.clear();
+  CHECK_THROWS_WITH_AS(mitsuba_scene_json(on_sphere, 8, 8, 1), doctest::Contains("on a triangle"), error);
+
+  scene metal = small_scene();
+  metal.materials[0] = material::mirror();
+  metal.materials[0].albedo = texture::image_map(two_texels(), true, "uv-grid.png");
+  CHECK_THROWS_WITH_AS(mitsuba_scene_json(metal, 8, 8, 1), doctest::Contains("material 0 is a metal with an image texture"), error);
+}
+
+TEST_CASE("mitsuba_export: the environment is written: a constant sky, or a map's scaled texels and its rotation") {
+  scene plain = small_scene();
+  CHECK(plain.background == rgb(0));
+  CHECK(mitsuba_scene_json(plain, 8, 8, 1).find("\"environment\": null") != std::string::npos);
+
+  scene sky = small_scene();
+  sky.environment = std::make_shared<environment_map>(environment_map::constant(rgb(0.5f, 1.0f, 2.0f), 2.0f, 30.0));
+  CHECK(mitsuba_scene_json(sky, 8, 8, 1).find("\"environment\": {\"type\": \"constant\", \"radiance\": [1, 2, 4]}") != std::string::npos);
+
+  scene map = small_scene();
+  map.environment = std::make_shared<environment_map>(environment_map::from_image(*two_texels(), "sky.hdr", 4.0f, -12.5));
+  const std::string j = mitsuba_scene_json(map, 8, 8, 1);
+  CHECK(j.find("\"environment\": {\"type\": \"map\", \"source\": \"sky.hdr\", \"rotate\": -12.5, "
+               "\"width\": 2, \"height\": 1, \"texels\": [4, 0, 0, 0, 0, 1]}") != std::string::npos);
+  CHECK(count(j, "{") == count(j, "}"));
+  CHECK(count(j, "[") == count(j, "]"));
+
+  // A texel near float's top survives with its 9 digits (no "inf" in the JSON).
+  image hot(1, 1, rgb(3e38f, 1e-30f, 0.0f));
+  map.environment = std::make_shared<environment_map>(environment_map::from_image(hot, "hot.pfm"));
+  const std::string h = mitsuba_scene_json(map, 8, 8, 1);
+  CHECK(float(number_after(h, "\"texels\": [")) == 3e38f);
+  CHECK(h.find("inf") == std::string::npos);
+}
+
+TEST_CASE("mitsuba_export: a file name with control characters is escaped, so the JSON stays valid") {
+  CHECK(detail::json_escape("a\\b\"c\nd") == "a\\\\b\\\"c\\u000ad");
 }

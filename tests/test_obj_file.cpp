@@ -8,12 +8,15 @@
 
 #include <doctest/doctest.h>
 
+#include "expected_errors.hpp"
+
 #include <algorithm>
 #include <fstream>
 #include <functional>
 
 using namespace zraka;
 namespace fs = std::filesystem;
+using zraka_test::error_of;
 
 namespace {
 const std::string vertices = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 1\n"
@@ -70,24 +73,8 @@ TEST_CASE("OBJ: degenerate but finite geometry stays legal") {
 }
 
 TEST_CASE("OBJ: each malformed file in tests/scenes/bad/obj gives the error its first line expects") {
-  const fs::path dir = resource_root() / "tests" / "scenes" / "bad" / "obj";
-  REQUIRE(fs::is_directory(dir));
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().extension() == ".obj") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  CHECK(files.size() >= 20);
-  for (const fs::path& f : files) {
-    std::ifstream in(f);
-    std::string first;
-    std::getline(in, first);
-    const std::string tag = "# expect: ";
-    REQUIRE_MESSAGE(first.rfind(tag, 0) == 0, f.filename().string() << " has no '# expect:' line");
-    const std::string expected = f.string() + first.substr(tag.size());  // "FILE:LINE:COL: ..."
-    const std::string got = error_of([&] { load_obj(f); });
-    INFO(f.filename().string());
-    CHECK_MESSAGE(got == expected, "got: " << got << "\nexpected: " << expected);
-  }
+  zraka_test::check_expected_errors(resource_root() / "tests" / "scenes" / "bad" / "obj", ".obj", "# expect: ", "", 20, true,
+                                    [](const fs::path& f) { (void)load_obj(f); });
 }
 
 TEST_CASE("OBJ: the counts are bounded by limits(), at the line that exceeds them") {

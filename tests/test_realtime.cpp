@@ -1,10 +1,14 @@
 // links: OpenCL yaml-cpp
 // The real-time path tracer (realtime.hpp, kernels/pathtrace.cl) against the REFERENCE: a long
 // mis render of the CPU path tracer (path.hpp through render.hpp), on a scene set covering
-// every emitter kind (triangle, mesh, one- and two-sided quads, spheres, point lights), every
-// material (Lambert with checker, Phong, metal, glass) and the naive, nee and mis kernels.
+// every emitter kind (triangle, mesh, one- and two-sided quads, spheres, point lights, the
+// environment map and a constant sky), every material (Lambert with checker, image and noise
+// textures, Phong, metal, glass, rough conductors and dielectrics) and the naive, nee and mis
+// kernels; and the new functions (environment sampling, image lookups, microfacets) on extreme
+// inputs against the C++ they mirror, through small probe kernels.
 // Without an OpenCL platform every case says so and passes (nothing to test on this machine).
 #include <zraka/cornell.hpp>
+#include <zraka/environment.hpp>
 #include <zraka/gpu_scene.hpp>
 #include <zraka/realtime.hpp>
 #include <zraka/render.hpp>
@@ -15,6 +19,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -80,18 +86,98 @@ scene mesh_light_scene() {
   return sc;
 }
 
+// A 6 x 6 floor at y = 0 (normal up), a square lamp of side `side` facing down at height y, a
+// sky colour and the camera: the stage of the scenes below.
+scene stage(const material& floor, double side, double y, rgb lamp, rgb sky, vec3 eye, vec3 at) {
+  scene sc;
+  sc.add(quad{{-3, 0, -3}, {0, 0, 6}, {6, 0, 0}}, sc.add_material(floor));
+  sc.add(quad{{-side / 2, y, -side / 2}, {side, 0, 0}, {0, 0, side}}, sc.add_material(material::emitter(lamp)));
+  sc.background = sky;
+  sc.camera.position = eye;
+  sc.camera.look_at = at;
+  return sc;
+}
+
 // Phong (the normalised lobe, book 1.9) on a ball and the floor, under a quad light and a dim sky.
 scene phong_scene() {
+  scene sc = stage(material::phong(rgb(0.5f), rgb(0.3f), 8), 1, 2, rgb(4.0f), rgb(0.05f, 0.07f, 0.1f), {0, 1.3, 3},
+                   {0, 0.5, 0});
+  sc.add(sphere{{0, 0.6, 0}, 0.6}, sc.add_material(material::phong(rgb(0.4f, 0.2f, 0.1f), rgb(0.5f), 40)));
+  return sc;
+}
+
+// Chapter 5's appearance. Rough metals (a preset's complex index, an RGB F0 with Schlick, a
+// roughness map) on a checker floor under a quad light and a dim sky.
+scene rough_conductor_scene() {
+  scene sc = stage(material::lambertian(texture::checker(rgb(0.7f), rgb(0.3f), 0.5)), 1.2, 2, rgb(5.0f),
+                   rgb(0.1f, 0.12f, 0.15f), {0, 1.2, 3}, {0, 0.4, 0});
+  const int gold = sc.add_material(material::rough_conductor(0.25, *find_metal("gold")));
+  const int f0 = sc.add_material(material::rough_conductor(0.05, conductor_fresnel::from_f0(rgb(0.9f, 0.6f, 0.4f))));
+  material mapped = material::rough_conductor(0.3, *find_metal("copper"));
+  mapped.roughness_map = texture::checker(rgb(0.02f), rgb(0.6f), 0.2);
+  const int copper = sc.add_material(mapped);
+  sc.add(sphere{{-0.9, 0.4, 0}, 0.4}, gold);
+  sc.add(sphere{{0, 0.4, -0.3}, 0.4}, f0);
+  sc.add(sphere{{0.9, 0.4, 0}, 0.4}, copper);
+  return sc;
+}
+
+// Rough glass (Walter 2007): a ball and a slab in front of a checker wall, lit by a quad light.
+scene rough_dielectric_scene() {
+  scene sc = stage(material::lambertian(rgb(0.7f)), 1, 2.2, rgb(6.0f), rgb(0.05f), {0, 1.1, 3}, {0, 0.5, 0});
+  const int wall =
+      sc.add_material(material::lambertian(texture::checker(rgb(0.8f, 0.3f, 0.2f), rgb(0.2f, 0.3f, 0.8f), 0.3)));
+  const int frosted = sc.add_material(material::rough_dielectric(0.15, 1.5));
+  const int milky = sc.add_material(material::rough_dielectric(0.5, 1.33));
+  sc.add(quad{{-3, 0, -1.5}, {6, 0, 0}, {0, 3, 0}}, wall);
+  sc.add(sphere{{-0.5, 0.5, 0}, 0.5}, frosted);
+  sc.add(quad{{0.3, 0, 0.3}, {0.8, 0, 0}, {0, 0.9, 0}}, milky);  // a thin pane, one interface
+  return sc;
+}
+
+// An image (procedural, 6 x 4, repeated and clamped) on a floor, a ball and a mesh with texture
+// coordinates; marble noise on a ball; under a quad light.
+scene textured_scene() {
+  auto img = std::make_shared<image>(6, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 6; ++x)
+      img->at(x, y) = rgb(0.15f + 0.13f * float(x), 0.1f + 0.2f * float(y), (x + y) % 2 ? 0.8f : 0.1f);
+  scene sc = stage(material::lambertian(texture::image_map(img, true, "grid")), 1, 2.2, rgb(5.0f), rgb(0),
+                   {0, 1.3, 3}, {0, 0.5, 0});
+  const int ball = sc.add_material(material::lambertian(texture::image_map(img, false, "grid")));
+  const int marble = sc.add_material(
+      material::lambertian(texture::noise(rgb(0.9f, 0.85f, 0.8f), rgb(0.1f, 0.15f, 0.3f), 2.5, 5, true)));
+  sc.add(sphere{{-0.7, 0.45, 0}, 0.45}, ball);
+  sc.add(sphere{{0.7, 0.45, 0}, 0.45}, marble);
+  mesh m;  // a square behind, its texture coordinates beyond [0, 1] (the clamp shows)
+  m.positions = {{-1, 0.2, -1}, {1, 0.2, -1}, {1, 1.6, -1}, {-1, 1.6, -1}};
+  m.texcoords = {{-0.5, -0.5}, {1.5, -0.5}, {1.5, 1.5}, {-0.5, 1.5}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  sc.add(m, ball);
+  return sc;
+}
+
+// A lat-long sky (16 x 8, rotated) with a small bright sun, the only light, over a plane with a
+// diffuse ball, a mirror and a rough gold ball; or a constant sky.
+scene sky_scene(bool constant) {
   scene sc;
-  const int floor = sc.add_material(material::phong(rgb(0.5f), rgb(0.3f), 8));
-  const int ball = sc.add_material(material::phong(rgb(0.4f, 0.2f, 0.1f), rgb(0.5f), 40));
-  const int lamp = sc.add_material(material::emitter(rgb(4.0f)));
-  sc.add(quad{{-3, 0, -3}, {0, 0, 6}, {6, 0, 0}}, floor);
-  sc.add(sphere{{0, 0.6, 0}, 0.6}, ball);
-  sc.add(quad{{-0.5, 2, -0.5}, {1, 0, 0}, {0, 0, 1}}, lamp);  // normal down
-  sc.background = rgb(0.05f, 0.07f, 0.1f);
-  sc.camera.position = {0, 1.3, 3};
-  sc.camera.look_at = {0, 0.5, 0};
+  const int floor = sc.add_material(material::lambertian(texture::checker(rgb(0.75f), rgb(0.3f), 0.75)));
+  sc.add(plane::from_point_normal(vec3(0), vec3(0, 1, 0)), floor);
+  sc.add(sphere{{-1.0, 0.5, 0}, 0.5}, sc.add_material(material::lambertian(rgb(0.7f, 0.35f, 0.2f))));
+  sc.add(sphere{{0, 0.5, -0.4}, 0.5}, sc.add_material(material::mirror(rgb(0.9f))));
+  sc.add(sphere{{1.0, 0.5, 0}, 0.5}, sc.add_material(material::rough_conductor(0.2, *find_metal("gold"))));
+  if (constant) {
+    sc.environment = std::make_shared<environment_map>(environment_map::constant(rgb(0.6f, 0.7f, 0.9f)));
+  } else {
+    image sky(16, 8);
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 16; ++x)
+        sky.at(x, y) = y < 4 ? rgb(0.3f + 0.05f * float(y), 0.4f + 0.05f * float(y), 0.8f) : rgb(0.1f, 0.08f, 0.05f);
+    sky.at(5, 2) = rgb(60, 55, 45);  // the sun
+    sc.environment = std::make_shared<environment_map>(environment_map::from_image(sky, "sky", 1.0f, 40));
+  }
+  sc.camera.position = {0, 1.4, 3.5};
+  sc.camera.look_at = {0, 0.4, 0};
   return sc;
 }
 
@@ -240,19 +326,23 @@ TEST_CASE("the kernel sees the structs gpu_scene.hpp packs: same sizes and offse
   const auto prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
                                             "-cl-std=CL1.2 -DHAS_SPHERES -DMETHOD_MIS");
   const auto k = cl::make_kernel(prog, "layout");
-  const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, 24 * sizeof(cl_uint));
+  const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, 36 * sizeof(cl_uint));
   cl::set_args(k, out);
   cl::run_1d(*ctx, k, 1);
-  std::vector<cl_uint> v(24);
-  ctx->read(out, 24 * sizeof(cl_uint), v.data());
+  std::vector<cl_uint> v(36);
+  ctx->read(out, 36 * sizeof(cl_uint), v.data());
   const std::vector<cl_uint> host = {
       sizeof(gpu_sphere), offsetof(gpu_sphere, material), sizeof(gpu_sphere), offsetof(gpu_sphere, light),
       sizeof(gpu_quad), offsetof(gpu_quad, material), sizeof(gpu_plane), offsetof(gpu_plane, material),
       sizeof(gpu_triangle), offsetof(gpu_triangle, material), sizeof(gpu_triangle), offsetof(gpu_triangle, light),
       sizeof(gpu_node4), offsetof(gpu_node4, count), sizeof(gpu_material), offsetof(gpu_material, fuzz),
       sizeof(gpu_material), offsetof(gpu_material, shininess), sizeof(gpu_light), offsetof(gpu_light, kind),
-      sizeof(gpu_light), offsetof(gpu_light, cdf), sizeof(gpu_light_triangle), offsetof(gpu_light_triangle, c)};
-  for (std::size_t i = 0; i < 24; ++i) CHECK(v[i] == host[i]);
+      sizeof(gpu_light), offsetof(gpu_light, cdf), sizeof(gpu_light_triangle), offsetof(gpu_light_triangle, c),
+      sizeof(gpu_material), offsetof(gpu_material, eta), sizeof(gpu_material), offsetof(gpu_material, albedo_texture),
+      sizeof(gpu_material), offsetof(gpu_material, roughness), sizeof(gpu_texture), offsetof(gpu_texture, kind),
+      sizeof(gpu_texture), offsetof(gpu_texture, cell), sizeof(gpu_environment),
+      offsetof(gpu_environment, cos_rotation)};
+  for (std::size_t i = 0; i < 36; ++i) CHECK(v[i] == host[i]);
 }
 
 // Issue 11's scene: naive cannot find the point light, and says so, on the CPU and here.
@@ -347,6 +437,238 @@ TEST_CASE("against the CPU's mis: a triangle mesh in the Cornell box (nee, mis)"
   check_scene("cornell glass + octahedron mesh", sc, {integrator::nee, integrator::mis});
 }
 
+TEST_CASE("against the CPU's mis: rough conductors, a preset, an F0 and a roughness map (nee, mis)") {
+  check_scene("rough metal", rough_conductor_scene(), {integrator::nee, integrator::mis});
+}
+
+TEST_CASE("against the CPU's mis: rough dielectrics, a ball and a pane (nee, mis)") {
+  check_scene("rough glass", rough_dielectric_scene(), {integrator::nee, integrator::mis});
+}
+
+TEST_CASE("against the CPU's mis: image textures (repeat, clamp, a mesh's uvs) and marble (nee, mis)") {
+  check_scene("textures", textured_scene(), {integrator::nee, integrator::mis});
+}
+
+TEST_CASE("against the CPU's mis: an environment map, the only light (naive, nee, mis)") {
+  check_scene("sky map", sky_scene(false), {integrator::naive, integrator::nee, integrator::mis});
+}
+
+TEST_CASE("against the CPU's mis: a constant environment (mis)") {
+  check_scene("constant sky", sky_scene(true), {integrator::mis});
+}
+
+TEST_CASE("the new features draw path.hpp's numbers in path.hpp's order (paired samples)") {
+  check_paired("rough metal", rough_conductor_scene(), integrator::mis);
+  check_paired("rough glass", rough_dielectric_scene(), integrator::mis);
+  check_paired("textures", textured_scene(), integrator::mis);
+  check_paired("sky map", sky_scene(false), integrator::mis);
+}
+
+// ---------------------------------------------------------------- the new functions at the extremes
+// The kernel's environment sampling and image lookups (built with -DPROBES) against
+// environment.hpp's and texture.hpp's on the same numbers: float against double, so within
+// float rounding, at the places where a float copy could go wrong.
+TEST_CASE("the kernel's environment: samples, densities and radiance as environment.hpp's, at the extremes") {
+  auto ctx = device();
+  if (!ctx) return;
+  image sky(8, 4);  // a row and a column of zeros (empty bins), one bright texel, the rest graded
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 8; ++x) sky.at(x, y) = y == 3 || x == 5 ? rgb(0) : rgb(0.2f * float(x + 1), 0.5f, float(y + 1));
+  sky.at(2, 1) = rgb(50, 40, 30);
+  scene sc;
+  sc.add(sphere{{0, 0, 0}, 1}, sc.add_material(material::lambertian(rgb(0.5f))));
+  sc.environment = std::make_shared<environment_map>(environment_map::from_image(sky, "sky", 1.0f, 30));
+  const environment_map& e = *sc.environment;
+  const gpu_scene g = pack_scene(sc, 4, 4, method(integrator::mis));
+  std::vector<cl_float4> in;
+  std::vector<vec2> us = {{0, 0}, {0x1.fffffep-1, 0x1.fffffep-1}, {0, 0x1.fffffep-1}, {0.5, 0.5}, {0.999, 0.001}};
+  rng r(5, 0, 0);
+  while (us.size() < 64) us.push_back(vec2(float(r.uniform()), float(r.uniform())));
+  std::vector<vec3> ds = {{0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {0, 0, -1}, {1e-30, 1, 0}};
+  while (ds.size() < us.size()) ds.push_back(glm::normalize(vec3(r.uniform() - 0.5, r.uniform() - 0.5, r.uniform() - 0.5)));
+  for (const vec2& u : us) in.push_back({{float(u.x), float(u.y), 0, 0}});
+  for (const vec3& d : ds) in.push_back({{float(d.x), float(d.y), float(d.z), 0}});
+  const int n = int(us.size());
+  const auto prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
+                                            "-cl-std=CL1.2 -DHAS_ENVIRONMENT -DMETHOD_MIS -DPROBES");
+  const auto k = cl::make_kernel(prog, "probe_environment");
+  const auto env = ctx->make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_environment), &g.environment);
+  const auto tables = ctx->make_buffer(CL_MEM_READ_ONLY, g.env_tables.size() * sizeof(float), g.env_tables.data());
+  const auto texels = ctx->make_buffer(CL_MEM_READ_ONLY, g.texels.size() * sizeof(gpu_float4), g.texels.data());
+  const auto inb = ctx->make_buffer(CL_MEM_READ_ONLY, in.size() * sizeof(cl_float4), in.data());
+  const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, 3 * in.size() * sizeof(cl_float4));
+  cl::set_args(k, env, tables, texels, inb, out, cl_int(n));
+  cl::run_1d(*ctx, k, std::size_t(n));
+  std::vector<cl_float4> o(3 * std::size_t(n));
+  ctx->read(out, o.size() * sizeof(cl_float4), o.data());
+  for (int i = 0; i < n; ++i) {
+    const cl_float4 s = o[3 * std::size_t(i)], self = o[3 * std::size_t(i) + 1], l = o[3 * std::size_t(i) + 2];
+    double pdf = 0;
+    const vec3 w = e.sample(vec2(double(in[std::size_t(i)].s[0]), double(in[std::size_t(i)].s[1])), pdf);
+    CAPTURE(i);
+    CHECK(std::abs(s.s[0] - w.x) < 1e-4);  // the same direction for the same numbers
+    CHECK(std::abs(s.s[1] - w.y) < 1e-4);
+    CHECK(std::abs(s.s[2] - w.z) < 1e-4);
+    // Its density is the CPU's density of the direction the kernel made (next to a pole, where
+    // 1 - v has no digits left in float, that direction is not quite the CPU's), and the
+    // kernel's own env_pdf of it: what makes MIS and NEE consistent.
+    // u.x = 0 is the seam phi = 0 = 2 pi, where the direction's density is read from the last
+    // column instead of the first, by the CPU's pdf() as well: a set of measure zero.
+    const vec3 wk(s.s[0], s.s[1], s.s[2]);
+    CHECK(std::isfinite(s.s[3]));
+    if (in[std::size_t(i)].s[0] != 0.0f) {
+      CHECK(s.s[3] == doctest::Approx(e.pdf(glm::normalize(wk))).epsilon(1e-4));
+      CHECK(self.s[0] == doctest::Approx(s.s[3]).epsilon(1e-4));
+    }
+    if (i > 4) CHECK(s.s[3] == doctest::Approx(pdf).epsilon(1e-4));  // away from the extremes: the CPU's too
+    const vec3 d = ds[std::size_t(i)];
+    const double p = e.pdf(d);
+    const rgb L = e.radiance(d);
+    CHECK(l.s[3] == doctest::Approx(p).epsilon(1e-4));  // 0 at the poles, exactly
+    if (p == 0) CHECK(l.s[3] == 0.0f);
+    for (int c = 0; c < 3; ++c) CHECK(l.s[c] == doctest::Approx(L[c]).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("the kernel's microfacets: f, pdf and samples as microfacet.hpp's, grazing and at alpha 1e-4 to 1") {
+  auto ctx = device();
+  if (!ctx) return;
+  const material gold = material::rough_conductor(0.5, *find_metal("gold"));
+  const gpu_material gm = to_gpu(gold);
+  struct case_t {
+    vec3 wo, wi;
+    double alpha, u_lobe, ux, uy, eta;
+    int kind;  // 0 conductor, 1 glass
+  };
+  std::vector<case_t> cases;
+  rng r(13, 0, 0);
+  auto unit = [&] {
+    return glm::normalize(vec3(r.uniform() - 0.5, r.uniform() - 0.5, r.uniform() - 0.5) + vec3(0, 0, 1e-3));
+  };
+  const vec3 grazing = glm::normalize(vec3(1, 0.2, 1e-6));
+  const vec3 edge[] = {{0, 0, 1}, grazing, {1, 0, 0}, {0.6, 0, -0.8}};  // normal, grazing, on the horizon, below
+  for (double alpha : {1e-4, 1e-3, 0.05, 0.5, 1.0})
+    for (int kind : {0, 1})
+      for (double eta : {1.5, 1 / 1.5}) {
+        for (const vec3& wo : edge) cases.push_back({wo, unit(), alpha, r.uniform(), r.uniform(), r.uniform(), eta, kind});
+        for (int k = 0; k < 12; ++k) {
+          vec3 wo = unit();
+          wo.z = std::abs(wo.z);
+          cases.push_back({wo, unit(), alpha, r.uniform(), r.uniform(), r.uniform(), eta, kind});
+        }
+      }
+  std::vector<cl_float4> in;
+  for (const case_t& c : cases) {
+    in.push_back({{float(c.wo.x), float(c.wo.y), float(c.wo.z), float(c.alpha)}});
+    in.push_back({{float(c.wi.x), float(c.wi.y), float(c.wi.z), float(c.u_lobe)}});
+    in.push_back({{float(c.ux), float(c.uy), float(c.eta), float(c.kind)}});
+  }
+  const int n = int(cases.size());
+  const auto prog = cl::build_program_files(
+      *ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
+      "-cl-std=CL1.2 -DHAS_ROUGH_CONDUCTOR -DHAS_ROUGH_DIELECTRIC -DMETHOD_MIS -DPROBES");
+  const auto k = cl::make_kernel(prog, "probe_microfacet");
+  const auto mb = ctx->make_buffer(CL_MEM_READ_ONLY, sizeof gm, &gm);
+  const auto inb = ctx->make_buffer(CL_MEM_READ_ONLY, in.size() * sizeof(cl_float4), in.data());
+  const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, 4 * cases.size() * sizeof(cl_float4));
+  cl::set_args(k, mb, inb, out, cl_int(n));
+  cl::run_1d(*ctx, k, std::size_t(n));
+  std::vector<cl_float4> o(4 * cases.size());
+  ctx->read(out, o.size() * sizeof(cl_float4), o.data());
+  int compared = 0, sampled = 0;
+  for (int i = 0; i < n; ++i) {
+    const case_t& c = cases[std::size_t(i)];
+    // The CPU side on the float inputs the kernel saw.
+    auto f32 = [](const vec3& v) { return vec3(float(v.x), float(v.y), float(v.z)); };
+    const vec3 wo = f32(c.wo), wi = f32(c.wi);
+    const ggx_t<double> d(double(float(c.alpha)));
+    const double eta = double(float(c.eta));
+    rgb f;
+    double pdf;
+    std::optional<microfacet_sample_t<double>> sm;
+    const vec2 u(double(float(c.ux)), double(float(c.uy)));
+    if (c.kind == 0) {
+      const rough_conductor_t<double> m{d, gold.conductor};
+      f = m.f(wo, wi);
+      pdf = m.pdf(wo, wi);
+      sm = m.sample(wo, u);
+    } else {
+      const rough_dielectric_t<double> m{d, eta};
+      f = rgb(float(m.f(wo, wi)));
+      pdf = m.pdf(wo, wi);
+      sm = m.sample(wo, u, double(float(c.u_lobe)));
+    }
+    const cl_float4 kf = o[4 * std::size_t(i)], ks = o[4 * std::size_t(i) + 1], kw = o[4 * std::size_t(i) + 2];
+    CAPTURE(i);
+    CAPTURE(c.alpha);
+    CAPTURE(c.kind);
+    for (const cl_float4& v : {kf, ks, kw})
+      for (int j = 0; j < 4; ++j) CHECK(std::isfinite(v.s[j]));  // never NaN or inf, grazing or sharp
+    CHECK(kf.s[3] >= 0.0f);
+    if (!(wo.z > 0)) {  // on the horizon or below: nothing, on both sides
+      CHECK(kf.s[0] == 0.0f);
+      CHECK(kf.s[3] == 0.0f);
+      CHECK(kw.s[3] == 0.0f);
+      CHECK_FALSE(sm);
+      continue;
+    }
+    // Float against double: the sharpest lobes move by the float rounding of a direction over
+    // alpha, so compare where the lobe is resolved (alpha >= 1e-3) and not on a knife's edge.
+    if (c.alpha >= 1e-3 && wo.z > 1e-3) {
+      ++compared;
+      for (int j = 0; j < 3; ++j) CHECK(kf.s[j] == doctest::Approx(f[j]).epsilon(2e-3).scale(1e-6));
+      CHECK(kf.s[3] == doctest::Approx(pdf).epsilon(2e-3).scale(1e-6));
+      if (sm && kw.s[3] == 1.0f && std::abs(double(c.u_lobe) - 0.5) < 0.45) {
+        ++sampled;
+        CHECK(std::abs(ks.s[0] - sm->wi.x) < 1e-3);
+        CHECK(std::abs(ks.s[2] - sm->wi.z) < 1e-3);
+        CHECK(ks.s[3] == doctest::Approx(sm->pdf).epsilon(2e-3));
+        CHECK(kw.s[1] == doctest::Approx(sm->weight.y).epsilon(2e-3));
+      }
+    }
+    if (kw.s[3] == 1.0f) CHECK(ks.s[3] > 0.0f);  // a sample has a density
+  }
+  MESSAGE(compared << " cases compared with microfacet.hpp, " << sampled << " samples");
+  CHECK(compared > 150);
+  CHECK(sampled > 60);
+}
+
+TEST_CASE("the kernel's image lookups: texture.hpp's bilinear, repeat and clamp, NaN and huge (u, v)") {
+  auto ctx = device();
+  if (!ctx) return;
+  auto img = std::make_shared<image>(5, 3);
+  rng r(9, 0, 0);
+  for (rgb& p : img->pixels) p = rgb(float(r.uniform()), float(r.uniform()), float(r.uniform()));
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  std::vector<cl_float2> uv = {{{nan, 0.5f}}, {{0.5f, inf}}, {{-inf, -inf}}, {{1e30f, -1e30f}}, {{-1e-9f, 1e-9f}},
+                               {{0x1.fffffep-1f, 0.0f}}, {{0.5f, 0.5f}}, {{2.7f, -3.2f}}, {{0.1f, 0.9f}}, {{-0.3f, 1.6f}}};
+  while (uv.size() < 64) uv.push_back({{float(4 * r.uniform() - 2), float(4 * r.uniform() - 2)}});
+  const int n = int(uv.size());
+  const auto prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
+                                            "-cl-std=CL1.2 -DHAS_TEXTURES -DHAS_IMAGE_TEXTURES -DMETHOD_MIS -DPROBES");
+  const auto k = cl::make_kernel(prog, "probe_image");
+  for (bool repeat : {true, false}) {
+    scene sc;
+    sc.add(sphere{{0, 0, -3}, 1}, sc.add_material(material::lambertian(texture::image_map(img, repeat))));
+    const gpu_scene g = pack_scene(sc, 4, 4, method(integrator::mis));
+    REQUIRE(g.textures.size() == 1);
+    const auto t = ctx->make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_texture), g.textures.data());
+    const auto texels = ctx->make_buffer(CL_MEM_READ_ONLY, g.texels.size() * sizeof(gpu_float4), g.texels.data());
+    const auto uvb = ctx->make_buffer(CL_MEM_READ_ONLY, uv.size() * sizeof(cl_float2), uv.data());
+    const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, uv.size() * sizeof(cl_float4));
+    cl::set_args(k, t, texels, uvb, out, cl_int(n));
+    cl::run_1d(*ctx, k, std::size_t(n));
+    std::vector<cl_float4> o(uv.size());
+    ctx->read(out, o.size() * sizeof(cl_float4), o.data());
+    for (int i = 0; i < n; ++i) {
+      const rgb want = lookup_bilinear(*img, double(uv[std::size_t(i)].s[0]), double(uv[std::size_t(i)].s[1]), repeat);
+      CAPTURE(i);
+      CAPTURE(repeat);
+      for (int c = 0; c < 3; ++c) CHECK(std::abs(o[std::size_t(i)].s[c] - want[c]) < 1e-5);
+    }
+  }
+}
+
 TEST_CASE("progressive accumulation: 4 launches of 8 spp are one launch of 32") {
   auto ctx = device();
   if (!ctx) return;
@@ -366,21 +688,27 @@ TEST_CASE("progressive accumulation: 4 launches of 8 spp are one launch of 32") 
   CHECK(a.read_image().at(5, 7) == ib.at(5, 7));
 }
 
-TEST_CASE("specialised and all-features kernels compute the same image") {
+TEST_CASE("specialised and all-features kernels compute the same image (spheres, textures, a sky map)") {
   auto ctx = device();
   if (!ctx) return;
-  const gpu_scene g = pack_scene(spheres_scene(), 32, 32, method(integrator::mis, 8));
-  gpu_renderer s(*ctx, g, 32, 32, 5, false), all(*ctx, g, 32, 32, 5, true);
-  CHECK(s.options().find("HAS_TRIANGLES") == std::string::npos);
-  CHECK(all.options().find("HAS_TRIANGLES") != std::string::npos);
-  s.launch(4);
-  all.launch(4);
-  const image a = s.read_image(), b = all.read_image();
-  double worst = 0;  // the same code runs; only the compiler's float contractions may differ
-  for (int y = 0; y < 32; ++y)
-    for (int x = 0; x < 32; ++x)
-      worst = std::max(worst, double(max_component(glm::abs(a.at(x, y) - b.at(x, y)))));
-  CHECK(worst < 1e-3);
+  for (const scene& sc : {spheres_scene(), textured_scene(), sky_scene(false)}) {
+    const gpu_scene g = pack_scene(sc, 32, 32, method(integrator::mis, 8));
+    gpu_renderer s(*ctx, g, 32, 32, 5, false), all(*ctx, g, 32, 32, 5, true);
+    CHECK(all.options().find("HAS_TRIANGLES") != std::string::npos);
+    CHECK(all.options().find("HAS_ENVIRONMENT") != std::string::npos);
+    s.launch(4);
+    all.launch(4);
+    const image a = s.read_image(), b = all.read_image();
+    double worst = 0;  // the same code runs; only the compiler's float contractions may differ
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 32; ++x)
+        worst = std::max(worst, double(max_component(glm::abs(a.at(x, y) - b.at(x, y)))));
+    CAPTURE(s.options());
+    CHECK(worst < 1e-3);
+  }
+  const gpu_scene spheres = pack_scene(spheres_scene(), 8, 8, method(integrator::mis, 8));
+  CHECK(build_options(spheres.features).find("HAS_TRIANGLES") == std::string::npos);
+  CHECK(build_options(spheres.features).find("HAS_ENVIRONMENT") == std::string::npos);
 }
 
 TEST_CASE("errata C7: the thesis's per-pixel seed repeats every frame; ours does not") {

@@ -9,12 +9,15 @@
 
 #include <doctest/doctest.h>
 
+#include "expected_errors.hpp"
+
 #include <algorithm>
 #include <functional>
 #include <fstream>
 
 using namespace zraka;
 namespace fs = std::filesystem;
+using zraka_test::error_of;
 
 namespace {
 
@@ -28,36 +31,12 @@ void write(const fs::path& p, const std::string& text) {
   std::ofstream out(p);
   out << text;
 }
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 }  // namespace
 
 TEST_CASE("scene file: each malformed scene gives the error its first line expects") {
-  const fs::path dir = resource_root() / "tests" / "scenes" / "bad";
-  REQUIRE(fs::is_directory(dir));
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().extension() == ".yaml") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  CHECK(files.size() >= 30);
-  for (const fs::path& f : files) {
-    std::ifstream in(f);
-    std::string first;
-    std::getline(in, first);
-    const std::string tag = "# expect: ";
-    REQUIRE_MESSAGE(first.rfind(tag, 0) == 0, f.filename().string() << " has no '# expect:' line");
-    const std::string expected = f.string() + first.substr(tag.size());  // "FILE:LINE:COL: field: ..."
-    const std::string got = error_of([&] { load_scene_file(f); });
-    INFO(f.filename().string());
-    CHECK_MESSAGE(got.find(expected) == 0, "got: " << got << "\nexpected to start with: " << expected);
-  }
+  zraka_test::check_expected_errors(resource_root() / "tests" / "scenes" / "bad", ".yaml", "# expect: ", "", 30, false,
+                                    [](const fs::path& f) { (void)load_scene_file(f); });
 }
 
 TEST_CASE("scene file: a scene of one sphere has every default of the structs") {

@@ -16,12 +16,15 @@
 
 #include <doctest/doctest.h>
 
+#include "expected_errors.hpp"
+
 #include <functional>
 #include <memory>
 #include <string>
 
 using namespace zraka;
 namespace zt = zraka::testing;
+using zraka_test::error_of;
 
 namespace {
 
@@ -29,14 +32,6 @@ scene_registry course_types() {
   scene_registry reg;
   mycourse::register_types(reg);
   return reg;
-}
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 loaded_scene parse(const std::string& text) { return parse_scene(text, "t.yaml", ".", course_types()); }
 std::string parse_error(const std::string& text) {

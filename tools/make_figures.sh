@@ -48,6 +48,7 @@ xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "$bin/pathtrace" --scene "$fig/../../scenes/sky.yaml" --spp 256 --out 5.3-sky.png >/dev/null && cp 5.3-sky.png "$fig/"
 "$bin/pathtrace" --scene "$fig/../../scenes/textures.yaml" --spp 256 --out 2.2-textures.png >/dev/null && cp 2.2-textures.png "$fig/"
 "$bin/pathtrace" --scene "$fig/../../scenes/gltf-model.yaml" --out 4.1-gltf.png >/dev/null && cp 4.1-gltf.png "$fig/"
+"$bin/pathtrace" --scene "$fig/../../scenes/teapot-sky.yaml" --spp 256 --out 5.4-teapot-sky.png >/dev/null && cp 5.4-teapot-sky.png "$fig/"
 plot 5.1-antialiasing-{regular,uniform,stratified}.csv -o "$fig/5.1-rmse.png" \
   --labels "regular,uniform,stratified" --title "Anti-aliasing: RMSE of the pixel integral"
 plot 5.3-importance-{uniform,cosine,light,mixture}.csv -o "$fig/5.3-error.png" \
@@ -95,6 +96,8 @@ done
 "$bin/realtime" --headless --width 200 --height 200 --frames 1 --out 4.3-hashed-seed.png >/dev/null && cp 4.3-hashed-seed.png "$fig/"
 "$bin/realtime" --headless --scene "$fig/../../scenes/triangle-light.yaml" --out 4.3-triangle-light.png >/dev/null && cp 4.3-triangle-light.png "$fig/"
 "$bin/pathtrace" --scene "$fig/../../scenes/triangle-light.yaml" --integrator mis --out 4.3-triangle-light-cpu >/dev/null && cp 4.3-triangle-light-cpu.png "$fig/"
+"$bin/realtime" --headless --scene "$fig/../../scenes/textures.yaml" --out 4.3-textures.png >/dev/null && cp 4.3-textures.png "$fig/"
+"$bin/realtime" --headless --scene "$fig/../../scenes/sky.yaml" --out 4.3-sky.png >/dev/null && cp 4.3-sky.png "$fig/"
 xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "${xvfb[@]}" "$bin/realtime" --frames 16 --width 320 --height 240 --scene cornell-spheres --screenshot 4.3-viewer.png >/dev/null && cp 4.3-viewer.png "$fig/"
 # --- 2.3, 4.2 (path tracing; several minutes on two cores)

@@ -6,7 +6,7 @@ set -euo pipefail
 core=(build-essential cmake pkg-config
       libglm-dev libstb-dev libtinyexr-dev libglfw3-dev libepoxy-dev
       opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
-      doctest-dev libyaml-cpp-dev libcli11-dev libfmt-dev
+      doctest-dev libyaml-cpp-dev libpugixml-dev libcli11-dev libfmt-dev
       xvfb xauth libgl1-mesa-dri python3 python3-matplotlib  # matplotlib: tools/plot_convergence.py
       libassimp-dev  # PLY and glTF meshes (mesh_file.hpp)
       clang libclang-rt-14-dev)  # clang: tools/fuzz.sh (libFuzzer), which tools/test.sh runs

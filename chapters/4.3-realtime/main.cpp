@@ -8,7 +8,8 @@
 // --headless renders with the same kernel and writes --out, without a window. A scene file's
 // settings (width, height, spp, max_depth, seed) are used unless given on the command line.
 // --integrator naive|nee|mis picks path.hpp's method, compiled into the kernel. What the kernel
-// cannot render (a user shape, a custom BSDF) is an error before the first frame.
+// cannot render (a user shape, a custom BSDF, participating media) is an error before the
+// first frame.
 // The program prints the device, the kernel options, size, spp, depth and time together
 // (errata C12), and in window mode the viewer's frame rate next to the kernel's alone.
 #include <zraka/cl.hpp>

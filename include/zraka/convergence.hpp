@@ -64,13 +64,7 @@ class convergence_log {
     column_index(fit_column_);  // throws if the fit column is not one of the columns
   }
 
-  void add(std::uint64_t n, double seconds, std::vector<double> values) {
-    if (values.size() != columns_.size())
-      throw error("convergence_log '" + title_ + "': a row needs " +
-                  std::to_string(columns_.size()) + " values, got " +
-                  std::to_string(values.size()));
-    rows_.push_back({n, seconds, std::move(values)});
-  }
+  ZRAKA_COMPILED_FN void add(std::uint64_t n, double seconds, std::vector<double> values);
 
   // A Monte Carlo integral against its known value (the integral_columns() layout).
   void add(double seconds, const estimator& e, double reference) {
@@ -191,6 +185,13 @@ ZRAKA_COMPILED_FN loglog_fit fit_loglog(const std::vector<double>& x, const std:
   return f;
 }
 // [end]
+
+ZRAKA_COMPILED_FN void convergence_log::add(std::uint64_t n, double seconds, std::vector<double> values) {
+  if (values.size() != columns_.size())
+    throw error("convergence_log '" + title_ + "': a row needs " + std::to_string(columns_.size()) +
+                " values, got " + std::to_string(values.size()));
+  rows_.push_back({n, seconds, std::move(values)});
+}
 
 ZRAKA_COMPILED_FN loglog_fit convergence_log::fit(std::string_view column) const {
   const std::size_t c = column_index(column.empty() ? std::string_view(fit_column_) : column);

@@ -69,6 +69,11 @@ class distribution_1d {
     return f_[i] * double(f_.size()) / total_;
   }
   double bin_pdf(std::size_t i) const { return f_[i] * double(f_.size()) / total_; }
+  // The tables sample() searches, as they are (an all-zero table reads as uniform here), for a
+  // copy that must sample the same way (the OpenCL kernel: gpu_scene.hpp).
+  const std::vector<double>& bins() const { return f_; }
+  const std::vector<double>& cdf() const { return cdf_; }
+  double total() const { return total_; }
 
  private:
   std::vector<double> f_, cdf_;
@@ -112,6 +117,8 @@ class distribution_2d {
   }
   std::size_t width() const { return nu_; }
   std::size_t height() const { return nv_; }
+  const distribution_1d& marginal() const { return marginal_; }
+  const distribution_1d& row(std::size_t v) const { return rows_[v]; }
 
  private:
   std::size_t nu_ = 0, nv_ = 0;

@@ -66,6 +66,14 @@ class environment_map {
   int width() const { return constant_ ? 1 : img_.width; }
   int height() const { return constant_ ? 1 : img_.height; }
   double rotate_degrees() const { return rotate_; }
+  // What the OpenCL kernel packs (gpu_scene.hpp) and the Mitsuba export writes: the map's texels,
+  // scale applied (row 0 the zenith; empty for a constant sky), its sampling distribution, the
+  // rotation's cosine and sine, a constant sky's radiance.
+  const image& map() const { return img_; }
+  const distribution_2d& distribution() const { return dist_; }
+  double cos_rotation() const { return cos_; }
+  double sin_rotation() const { return sin_; }
+  const rgb& constant_radiance() const { return L_; }
 
   // [listing environment-lookup]
   // The radiance arriving along -w, i.e. seen looking in direction w (unit).

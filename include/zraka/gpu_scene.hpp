@@ -18,17 +18,23 @@
 // object, material, selection CDF and probability, area), the triangles of triangle and mesh
 // lights with their area CDF in a side table, and in every sphere, quad and triangle the index
 // of its light (or -1), which a BSDF-sampled ray that hits a light needs for MIS.
+// The appearance of chapter 5: the rough materials (microfacet.hpp) with their Fresnel presets,
+// image and noise textures (a texture table, the images' texels in one array) and the
+// environment light, whose map and sampling tables are packed from environment.hpp's own.
 // What the kernel cannot run is refused here, by name, before anything is built: a user shape
-// (C++ intersection code) and a custom BSDF (C++ scattering code).
+// (C++ intersection code), a custom BSDF (C++ scattering code), participating media.
 //
 // The features a scene uses become -D switches (build_options()), so the kernel compiled for a
 // scene of diffuse spheres has no triangle, BVH, glass or Phong code at all.
+#include <zraka/environment.hpp>
 #include <zraka/error.hpp>
 #include <zraka/lights.hpp>
+#include <zraka/noise.hpp>
 #include <zraka/path.hpp>
 #include <zraka/scene.hpp>
 #include <zraka/triangle_bvh.hpp>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <cmath>
@@ -66,16 +72,38 @@ struct gpu_node4 {           // triangle_bvh_node4, byte for byte
   std::uint32_t child[4], count[4];
 };
 enum gpu_material_kind : std::int32_t {
-  gpu_lambertian = 0, gpu_metal = 1, gpu_dielectric = 2, gpu_emitter = 3, gpu_phong = 4
+  gpu_lambertian = 0, gpu_metal = 1, gpu_dielectric = 2, gpu_emitter = 3, gpu_phong = 4,
+  gpu_rough_conductor = 5, gpu_rough_dielectric = 6
 };
 struct gpu_material {
   gpu_float4 albedo_a, albedo_b;  // solid: a; checker: a and b; phong: kd and ks
   gpu_float4 radiance;            // emitted from the front face (both faces if two_sided)
-  std::int32_t kind, checker, two_sided, pad;
+  std::int32_t kind, checker, two_sided, schlick;  // schlick: the conductor's F0 is in eta
   float fuzz, ior, cell, shininess;
+  gpu_float4 eta, k;              // rough_conductor: the complex index per channel (or F0)
+  std::int32_t albedo_texture, roughness_texture, pad[2];  // index in textures, or -1
+  float roughness, pad2[3];       // rough_*: the GGX alpha (when roughness_texture is -1)
+};
+// texture.hpp's texture, for an image or noise albedo and any roughness map (a material's
+// solid or checker albedo stays in the material itself).
+enum gpu_texture_kind : std::int32_t { gpu_tex_solid = 0, gpu_tex_checker = 1, gpu_tex_image = 2, gpu_tex_noise = 3 };
+struct gpu_texture {
+  gpu_float4 a, b;                  // solid, checker, noise colours
+  std::int32_t kind, width, height, first;  // image: its texels from texels[first], row 0 at the top
+  std::int32_t repeat, octaves, marble, pad;
+  float cell, frequency, pad2[2];
+};
+// environment.hpp's environment_map: a constant sky, or a lat-long map whose texels are in
+// texels[first] and whose distribution_2d is in env_tables (see pack_environment).
+struct gpu_environment {
+  gpu_float4 radiance;              // a constant sky's
+  std::int32_t is_constant, width, height, first;
+  std::int32_t light, present, pad[2];  // light: its index in the light table, or -1 (black: not sampled)
+  float cos_rotation, sin_rotation, marginal_total, pad2;
 };
 enum gpu_light_kind : std::int32_t {
-  gpu_light_sphere = 0, gpu_light_quad = 1, gpu_light_triangles = 2, gpu_light_point = 3
+  gpu_light_sphere = 0, gpu_light_quad = 1, gpu_light_triangles = 2, gpu_light_point = 3,
+  gpu_light_environment = 4
 };
 struct gpu_light {                  // one light of light_set_t, in its order
   gpu_float4 position, intensity;   // point lights
@@ -101,9 +129,13 @@ static_assert(sizeof(gpu_triangle) == 64 && offsetof(gpu_triangle, id) == 48 &&
               offsetof(gpu_triangle, material) == 52 && offsetof(gpu_triangle, light) == 56);
 static_assert(sizeof(gpu_node4) == sizeof(triangle_bvh_node4) && sizeof(gpu_node4) == 128 &&
               offsetof(gpu_node4, child) == 96 && offsetof(gpu_node4, count) == 112);
-static_assert(sizeof(gpu_material) == 80 && offsetof(gpu_material, radiance) == 32 &&
+static_assert(sizeof(gpu_material) == 144 && offsetof(gpu_material, radiance) == 32 &&
               offsetof(gpu_material, kind) == 48 && offsetof(gpu_material, fuzz) == 64 &&
-              offsetof(gpu_material, shininess) == 76);
+              offsetof(gpu_material, shininess) == 76 && offsetof(gpu_material, eta) == 80 &&
+              offsetof(gpu_material, albedo_texture) == 112 && offsetof(gpu_material, roughness) == 128);
+static_assert(sizeof(gpu_texture) == 80 && offsetof(gpu_texture, kind) == 32 && offsetof(gpu_texture, cell) == 64);
+static_assert(sizeof(gpu_environment) == 64 && offsetof(gpu_environment, light) == 32 &&
+              offsetof(gpu_environment, cos_rotation) == 48);
 static_assert(sizeof(gpu_light) == 64 && offsetof(gpu_light, kind) == 32 && offsetof(gpu_light, cdf) == 52);
 static_assert(sizeof(gpu_light_triangle) == 48);
 static_assert(sizeof(gpu_camera) == 112 && offsetof(gpu_camera, lens_radius) == 96);
@@ -112,6 +144,9 @@ static_assert(sizeof(gpu_camera) == 112 && offsetof(gpu_camera, lens_radius) == 
 struct gpu_features {
   bool spheres = false, quads = false, planes = false, triangles = false;
   bool metal = false, dielectric = false, phong = false, checker = false, emitters = false;
+  bool rough_conductor = false, rough_dielectric = false;  // microfacet.hpp
+  bool textures = false, image_textures = false, noise_textures = false;  // texture records
+  bool environment = false;  // rays that leave see it; sampled when it is in the light table
   bool sphere_lights = false, quad_lights = false, triangle_lights = false, point_lights = false;
   bool thin_lens = false;
   integrator method = integrator::mis;  // path.hpp's default
@@ -128,6 +163,12 @@ struct gpu_scene {
   std::vector<gpu_material> materials;
   std::vector<gpu_light> lights;                    // light_set_t's lights, in its order
   std::vector<gpu_light_triangle> light_triangles;  // of the triangle and mesh lights
+  std::vector<gpu_texture> textures;
+  std::vector<gpu_float4> texels;                   // the images' and the environment's, linear RGB
+  std::vector<gpu_float4> triangle_uvs;             // image textures on triangles: 2 per triangle
+  gpu_environment environment{};
+  std::vector<float> env_tables;                    // the environment's distribution_2d
+  std::vector<std::int32_t> noise_permutation;      // noise.hpp's, when a noise texture is used
   gpu_camera camera;
   gpu_float4 background;
   gpu_features features;
@@ -159,19 +200,24 @@ inline bool finite(const gpu_float4& v) {
 inline gpu_camera to_gpu(const camera_t<double>::prepared& c) { return detail::camera_to_gpu(c); }
 inline gpu_camera to_gpu(const camera_t<float>::prepared& c) { return detail::camera_to_gpu(c); }
 
+// The material's numbers; its texture records (albedo_texture, roughness_texture) are added by
+// pack_scene, which owns the texture table.
 inline gpu_material to_gpu(const material& m) {
   gpu_material g{};
+  g.albedo_texture = g.roughness_texture = -1;
   switch (m.kind) {
     case material_kind::lambertian: g.kind = gpu_lambertian; break;
     case material_kind::fuzzy_metal: g.kind = gpu_metal; break;
     case material_kind::dielectric: g.kind = gpu_dielectric; break;
     case material_kind::emitter: g.kind = gpu_emitter; break;
     case material_kind::phong: g.kind = gpu_phong; break;
-    case material_kind::rough_conductor:  // pack_scene refuses any an object uses; one no object
-    case material_kind::rough_dielectric:  // uses is packed as black, and never looked up
-      g.kind = gpu_lambertian;
-      return g;
+    case material_kind::rough_conductor: g.kind = gpu_rough_conductor; break;
+    case material_kind::rough_dielectric: g.kind = gpu_rough_dielectric; break;
   }
+  g.roughness = float(m.roughness);
+  g.schlick = m.conductor.schlick ? 1 : 0;  // Schlick's F0 travels in eta
+  g.eta = to_gpu(m.conductor.schlick ? m.conductor.f0 : m.conductor.eta);
+  g.k = to_gpu(m.conductor.k);
   if (m.kind == material_kind::phong) {  // brdf_at(): Lambert kd/pi plus the normalised lobe ks
     g.albedo_a = to_gpu(m.kd);
     g.albedo_b = to_gpu(m.ks);
@@ -189,6 +235,66 @@ inline gpu_material to_gpu(const material& m) {
   return g;
 }
 
+// A texture record, its image's texels appended to g.texels (linear RGB: the scene file decoded
+// sRGB when it read the image, texture_file.hpp); returns its index in g.textures.
+inline std::int32_t pack_texture(gpu_scene& g, const texture& t) {
+  gpu_texture o{};
+  o.a = to_gpu(t.a);
+  o.b = to_gpu(t.b);
+  o.cell = float(t.cell);
+  o.frequency = float(t.frequency);
+  o.octaves = t.octaves;
+  o.marble = t.marble ? 1 : 0;
+  o.repeat = t.repeat ? 1 : 0;
+  switch (t.type) {
+    case texture::kind::solid: o.kind = gpu_tex_solid; break;
+    case texture::kind::checker: o.kind = gpu_tex_checker; break;
+    case texture::kind::noise: o.kind = gpu_tex_noise; break;
+    case texture::kind::image: {
+      if (!t.map || t.map->width < 1 || t.map->height < 1) throw error("realtime: " + describe(t) + " is empty");
+      o.kind = gpu_tex_image;
+      o.width = t.map->width;
+      o.height = t.map->height;
+      o.first = std::int32_t(g.texels.size());
+      for (const rgb& c : t.map->pixels) g.texels.push_back(to_gpu(c));
+      break;
+    }
+  }
+  g.textures.push_back(o);
+  return std::int32_t(g.textures.size() - 1);
+}
+
+// [listing gpu-environment]
+// The environment: a constant sky's colour, or the map's texels and its distribution_2d's
+// tables as they are, in float: the marginal's bins [H] and CDF [H + 1], each row's total [H],
+// then every row's bins [H][W] and CDF [H][W + 1]. light: its index in the light table.
+inline void pack_environment(gpu_scene& g, const environment_map& e, int light) {
+  gpu_environment& o = g.environment;
+  o.present = 1;
+  o.light = light;
+  o.is_constant = e.is_constant() ? 1 : 0;
+  o.radiance = to_gpu(e.constant_radiance());
+  o.cos_rotation = float(e.cos_rotation());
+  o.sin_rotation = float(e.sin_rotation());
+  if (e.is_constant()) return;
+  const image& map = e.map();
+  o.width = map.width;
+  o.height = map.height;
+  o.first = std::int32_t(g.texels.size());
+  for (const rgb& c : map.pixels) g.texels.push_back(to_gpu(c));
+  const distribution_2d& d = e.distribution();
+  auto put = [&](const std::vector<double>& v) {
+    for (double x : v) g.env_tables.push_back(float(x));
+  };
+  put(d.marginal().bins());
+  put(d.marginal().cdf());
+  o.marginal_total = float(d.marginal().total());
+  for (std::size_t v = 0; v < d.height(); ++v) g.env_tables.push_back(float(d.row(v).total()));
+  for (std::size_t v = 0; v < d.height(); ++v) put(d.row(v).bins());
+  for (std::size_t v = 0; v < d.height(); ++v) put(d.row(v).cdf());
+}
+// [end]
+
 // [listing gpu-pack]
 // The scene as arrays, the camera prepared for a width x height image, the lights of
 // path.hpp's tracer for these options, and the features used. Throws for what the kernel
@@ -205,33 +311,44 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   if (!sc.media.empty())  // book 6.1: the kernel has no free-flight sampling yet
     throw error("realtime: the scene has participating media ('" + sc.media[0].name +
                 "'), which the OpenCL kernel does not render; render it with pathtrace");
-  if (sc.environment)  // the kernel has no environment light (a constant sky: settings.background, hit only)
-    throw error("realtime: the scene has an environment light ('" + sc.environment->name() +
-                "'), which the OpenCL kernel cannot sample; render it with pathtrace" +
-                (sc.environment->is_constant() ? ", or give the colour as settings.background (counted where rays find it)" : ""));
   for_each_object(sc, [&](object_ref o) {
     const material& m = sc.material_of(o);
     if (is_custom(m))
       throw error("realtime: " + sc.material_label(sc.material_index(o)) + " is a custom BSDF ('" +
                   m.bsdf->name() + "'), which the OpenCL kernel cannot run; render it with pathtrace");
-    if (is_microfacet(m))
-      throw error("realtime: " + sc.material_label(sc.material_index(o)) + " is a " + kind_name(m.kind) +
-                  " (a microfacet material), which the OpenCL kernel does not implement; render it with pathtrace");
-    if (m.albedo.type == texture::kind::image || m.albedo.type == texture::kind::noise)
-      throw error("realtime: " + sc.material_label(sc.material_index(o)) + " has " + describe(m.albedo) +
-                  ", which the OpenCL kernel does not evaluate; render it with pathtrace");
   });
   const path_tracer_t<T> tracer(sc, opt);  // the CPU's own checks, and its lights
   const light_set_t<T>& lights = tracer.lights;
   g.light_summary = lights.describe();
-  for (const material& m : sc.materials) g.materials.push_back(to_gpu(m));
+  // The albedo is read by Lambert and metal (material.hpp), the roughness map by the microfacets.
+  auto textured_albedo = [](const material& m) {
+    return (m.kind == material_kind::lambertian || m.kind == material_kind::fuzzy_metal) &&
+           (m.albedo.type == texture::kind::image || m.albedo.type == texture::kind::noise);
+  };
+  auto roughness_map = [](const material& m) { return is_microfacet(m) && m.roughness_map; };
+  for (const material& m : sc.materials) {
+    gpu_material o = to_gpu(m);
+    if (textured_albedo(m)) o.albedo_texture = pack_texture(g, m.albedo);
+    if (roughness_map(m)) o.roughness_texture = pack_texture(g, *m.roughness_map);
+    g.materials.push_back(o);
+  }
+  auto note_texture = [&](const texture& t) {
+    f.textures = true;
+    f.checker |= t.type == texture::kind::checker;
+    f.image_textures |= t.type == texture::kind::image;
+    f.noise_textures |= t.type == texture::kind::noise;
+  };
   auto note_material = [&](int mi) {
     const material& m = sc.materials[std::size_t(mi)];
     f.metal |= m.kind == material_kind::fuzzy_metal;
     f.dielectric |= m.kind == material_kind::dielectric;
     f.phong |= m.kind == material_kind::phong;
+    f.rough_conductor |= m.kind == material_kind::rough_conductor;
+    f.rough_dielectric |= m.kind == material_kind::rough_dielectric;
     f.checker |= m.albedo.type == texture::kind::checker &&
                  (m.kind == material_kind::lambertian || m.kind == material_kind::fuzzy_metal);
+    if (textured_albedo(m)) note_texture(m.albedo);
+    if (roughness_map(m)) note_texture(*m.roughness_map);
     f.emitters |= emits(m);
   };
   auto light_of = [&](shape_kind k, std::size_t i) { return std::int32_t(lights.index_of({k, int(i)})); };
@@ -252,13 +369,18 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   }
   // Every triangle, lone or in a mesh, goes into one BVH; tri_material and tri_light map the
   // input index to the material and the light (the mesh's, for its triangles).
+  // tri_uv: the vertices' texture coordinates (a lone triangle's and an untextured mesh's are
+  // (0, 0), (1, 0), (0, 1), so that interpolating them gives the barycentrics, as on the CPU).
   std::vector<triangle_t<float>> tris;
   std::vector<std::int32_t> tri_material, tri_light;
+  std::vector<std::array<gpu_float4, 2>> tri_uv;
+  const std::array<gpu_float4, 2> barycentric = {gpu_float4{0, 0, 1, 0}, gpu_float4{0, 1, 0, 0}};
   for (std::size_t i = 0; i < sc.triangles.size(); ++i) {
     const auto& t = sc.triangles[i];
     tris.push_back({vec3_t<float>(t.shape.a), vec3_t<float>(t.shape.b), vec3_t<float>(t.shape.c)});
     tri_material.push_back(t.material);
     tri_light.push_back(light_of(shape_kind::triangle, i));
+    tri_uv.push_back(barycentric);
     note_material(t.material);
   }
   for (std::size_t m = 0; m < sc.meshes.size(); ++m) {
@@ -268,14 +390,20 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
       tris.push_back({vec3_t<float>(t.a), vec3_t<float>(t.b), vec3_t<float>(t.c)});
       tri_material.push_back(mo.material);
       tri_light.push_back(light_of(shape_kind::mesh, m));
+      const auto t0 = mo.shape.texcoord(i, T(0), T(0)), t1 = mo.shape.texcoord(i, T(1), T(0)),
+                 t2 = mo.shape.texcoord(i, T(0), T(1));
+      tri_uv.push_back({gpu_float4{float(t0.x), float(t0.y), float(t1.x), float(t1.y)},
+                        gpu_float4{float(t2.x), float(t2.y), 0, 0}});
     }
     note_material(mo.material);
   }
   if (!tris.empty()) {
     const triangle_bvh bvh(tris);
-    for (const packed_triangle& p : bvh.triangles())
+    for (const packed_triangle& p : bvh.triangles()) {
       g.triangles.push_back({to_gpu(p.a), to_gpu(p.b), to_gpu(p.c), p.id,
                              tri_material[p.id], tri_light[p.id], 0});
+      if (f.image_textures) g.triangle_uvs.insert(g.triangle_uvs.end(), tri_uv[p.id].begin(), tri_uv[p.id].end());
+    }
     for (const triangle_bvh_node4& n : bvh.nodes()) {
       gpu_node4 o;
       static_assert(sizeof o == sizeof n);
@@ -292,6 +420,12 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
     o.cdf = float(cdf += p);
     o.pdf = float(p);
     o.area = float(l.area);
+    if (l.environment) {
+      o.kind = gpu_light_environment;
+      o.object = o.material = -1;
+      g.lights.push_back(o);
+      continue;
+    }
     if (l.point >= 0) {
       const auto& pl = sc.point_lights[std::size_t(l.point)];
       o.kind = gpu_light_point;
@@ -349,6 +483,17 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   for (std::size_t i = 0; i < g.materials.size(); ++i)
     need_finite(g.materials[i].radiance, "the radiance of material " + std::to_string(i));
   for (const auto& l : g.lights) need_finite(l.intensity, "a point light's intensity");
+  for (const auto& t : g.textures)
+    for (const auto& v : {t.a, t.b}) need_finite(v, "a texture's colour");
+  for (const auto& v : g.texels) need_finite(v, "a texel of a texture or of the environment");
+
+  if (sc.environment) {
+    pack_environment(g, *sc.environment, lights.environment_index());
+    need_finite(g.environment.radiance, "the environment's colour");
+    f.environment = true;
+  }
+  if (f.noise_textures)
+    for (std::uint8_t p : detail::noise_permutation()) g.noise_permutation.push_back(p);
 
   camera_t<T> c = sc.camera;
   c.aspect = T(width) / T(height);
@@ -383,6 +528,12 @@ inline std::string build_options(const gpu_features& f, bool all_features = fals
   flag(f.phong, "HAS_PHONG");
   flag(f.checker, "HAS_CHECKER");
   flag(f.emitters, "HAS_EMITTERS");
+  flag(f.rough_conductor, "HAS_ROUGH_CONDUCTOR");
+  flag(f.rough_dielectric, "HAS_ROUGH_DIELECTRIC");
+  flag(f.textures, "HAS_TEXTURES");  // records for the two below and for roughness maps
+  flag(f.image_textures, "HAS_IMAGE_TEXTURES");
+  flag(f.noise_textures, "HAS_NOISE_TEXTURES");
+  flag(f.environment, "HAS_ENVIRONMENT");
   flag(f.sphere_lights, "HAS_SPHERE_LIGHTS");
   flag(f.quad_lights, "HAS_QUAD_LIGHTS");
   flag(f.triangle_lights, "HAS_TRIANGLE_LIGHTS");

@@ -7,6 +7,7 @@
 //           e.g. in Rousselle et al. 2011); it falls as 1/spp for an unbiased renderer;
 //   channel_mean  the mean of each channel, to tell a bias (means differ) from noise.
 // Sums are in double: a million squared float differences lose digits in float.
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
 
@@ -15,11 +16,16 @@
 
 namespace zraka {
 
-inline void check_same_size(const image& a, const image& ref) {
+ZRAKA_COMPILED_FN void check_same_size(const image& a, const image& ref)
+#if ZRAKA_COMPILED_DEFINITIONS
+{
   if (a.width != ref.width || a.height != ref.height)
     throw error("the reference is " + std::to_string(ref.width) + "x" + std::to_string(ref.height) +
                 ", the image " + std::to_string(a.width) + "x" + std::to_string(a.height));
 }
+#else
+    ;
+#endif
 
 // [listing rmse]
 inline double rmse(const image& a, const image& ref) {

@@ -34,8 +34,8 @@
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
-#endif
 #include <tinyexr.h>  // declarations; the library is libtinyexr
+#endif
 
 static_assert(std::endian::native == std::endian::little, "PFM I/O assumes a little-endian host");
 
@@ -105,10 +105,20 @@ ZRAKA_COMPILED_FN void write_image(const image& img, const std::filesystem::path
 ZRAKA_COMPILED_FN image parse_pfm(std::string_view bytes, const std::string& name);
 ZRAKA_COMPILED_FN image read_pfm(const std::filesystem::path& path);
 
+// OpenEXR through tinyexr, compiled once like the writers above: write_exr writes three float
+// channels, ZIP compressed; parse_exr/read_exr read a single-part image, its size checked before
+// any pixel is decoded, every pixel finite; read_float_image reads a reference, .exr as OpenEXR,
+// any other name as PFM.
+ZRAKA_COMPILED_FN void write_exr(const image& img, const std::filesystem::path& path);
+ZRAKA_COMPILED_FN image parse_exr(std::string_view bytes, const std::string& name);
+ZRAKA_COMPILED_FN image read_exr(const std::filesystem::path& path);
+ZRAKA_COMPILED_FN image read_float_image(const std::filesystem::path& path);
+
+#if ZRAKA_COMPILED_DEFINITIONS
 // [listing exr]
 // OpenEXR: three channels of 32-bit float (B, G, R: the order EXR files list them in), ZIP
 // compressed (lossless), scanlines top to bottom. Encoded in memory, then written atomically.
-inline void write_exr(const image& img, const std::filesystem::path& path) {
+ZRAKA_COMPILED_FN void write_exr(const image& img, const std::filesystem::path& path) {
   if (const std::size_t bad = img.count_nonfinite())
     throw error("refusing to write " + path.string() + ": " + std::to_string(bad) + " NaN/inf pixel(s)");
   const std::size_t n = img.pixels.size();
@@ -150,7 +160,7 @@ inline void write_exr(const image& img, const std::filesystem::path& path) {
 
 // The RGB of an EXR file's bytes (a single-part scanline or tiled image; a one-channel image is
 // grey). Its size is checked before any pixel is decoded, and every pixel must be finite.
-inline image parse_exr(std::string_view bytes, const std::string& name) {
+ZRAKA_COMPILED_FN image parse_exr(std::string_view bytes, const std::string& name) {
   const auto* mem = reinterpret_cast<const unsigned char*>(bytes.data());
   EXRVersion version;
   if (ParseEXRVersionFromMemory(&version, mem, bytes.size()) != TINYEXR_SUCCESS)
@@ -189,18 +199,17 @@ inline image parse_exr(std::string_view bytes, const std::string& name) {
   detail::refuse_nonfinite(img, name);
   return img;
 }
-inline image read_exr(const std::filesystem::path& path) {
+ZRAKA_COMPILED_FN image read_exr(const std::filesystem::path& path) {
   return parse_exr(read_input_file(path), path.string());
 }
 // [end]
 
 // Reads a float image (a reference): .exr as OpenEXR, any other name as PFM (whose reader
 // checks its header and says so when it is not one).
-inline image read_float_image(const std::filesystem::path& path) {
+ZRAKA_COMPILED_FN image read_float_image(const std::filesystem::path& path) {
   return path.extension() == ".exr" ? read_exr(path) : read_pfm(path);
 }
 
-#if ZRAKA_COMPILED_DEFINITIONS
 ZRAKA_COMPILED_FN std::size_t write_png(const image& img, const std::filesystem::path& path) {
   std::string rgb8;
   const std::size_t bad = detail::encode_8bit(img, rgb8);

@@ -1,13 +1,23 @@
 #pragma once
 // The scene as JSON for tools/mitsuba_reference.py, which builds the same scene in Mitsuba 3 to
-// render a reference (book 2.3): size, depth, background, camera, materials, spheres, quads,
-// triangles (every mesh's too, flat), point lights and homogeneous media (book 6.1). What the
-// converter cannot express is refused by name (zraka::error): an infinite plane, a user shape,
-// a density grid, an environment light, a custom BSDF, a rough material, a kind it does not know. Numbers are written with 17 digits, so doubles survive the trip.
+// render a reference (book 2.3): size, depth, camera, materials, spheres, quads, triangles (every
+// mesh's too, flat), point lights, homogeneous media (book 6.1), and what book 5.4 and 5.3 add:
+// rough_conductor and rough_dielectric (GGX alpha; a conductor by its complex index per channel,
+// presets included), image textures on lambertian quads (the linear texels, as read), and the
+// environment (a constant sky or a map's scaled texels with its rotation). Numbers are written
+// with 17 digits, texels with 9 (a float's round trip), so the values survive the trip.
+// What the converter cannot express exactly is refused by name (zraka::error): an infinite plane,
+// a user shape, a density grid, a custom BSDF, a conductor given by an RGB F0 (Schlick: Mitsuba's
+// roughconductor has none), a roughness texture, a noise texture, an image texture on anything
+// but a lambertian quad (a sphere's or a triangle's (u, v) is not Mitsuba's), a kind it does not
+// know. The converter refuses more (checker, fuzzy metal, phong): see tools/mitsuba_reference.py.
 #include <zraka/compiled.hpp>
+#include <zraka/environment.hpp>
 #include <zraka/error.hpp>
+#include <zraka/image.hpp>
 #include <zraka/material.hpp>
 #include <zraka/scene.hpp>
+#include <zraka/texture.hpp>
 
 #include <cstddef>
 #include <sstream>
@@ -23,7 +33,23 @@ inline const char* mitsuba_kind(material_kind k) {
   if (k == material_kind::dielectric) return "dielectric";
   if (k == material_kind::emitter) return "emitter";
   if (k == material_kind::phong) return "phong";
+  if (k == material_kind::rough_conductor) return "rough_conductor";
+  if (k == material_kind::rough_dielectric) return "rough_dielectric";
   return nullptr;
+}
+// A file name inside a JSON string: quotes, backslashes and control characters escaped.
+inline std::string json_escape(const std::string& s) {
+  std::string r;
+  for (const char ch : s) {
+    if (ch == '"' || ch == '\\') r += '\\', r += ch;
+    else if (static_cast<unsigned char>(ch) < 0x20) {
+      static const char* hex = "0123456789abcdef";
+      r += "\\u00";
+      r += hex[(ch >> 4) & 0xf];
+      r += hex[ch & 0xf];
+    } else r += ch;
+  }
+  return r;
 }
 }  // namespace detail
 
@@ -37,23 +63,57 @@ ZRAKA_COMPILED_FN std::string mitsuba_scene_json(const scene& sc, int width, int
     throw error("--export: a user shape ('" + sc.user_shapes[0].shape->name() + "') cannot be exported");
   for (const medium& md : sc.media)
     if (!md.homogeneous()) throw error("--export: medium '" + md.name + "' is a density grid; only homogeneous media are exported");
-  if (sc.environment) throw error("--export: the environment light ('" + sc.environment->name() + "') is not exported to Mitsuba yet");
   for (std::size_t i = 0; i < sc.materials.size(); ++i) {
     const material& m = sc.materials[i];
-    if (is_custom(m)) throw error("--export: " + sc.material_label(int(i)) + " is a custom BSDF ('" + m.bsdf->name() + "'), which cannot be exported");
-    if (is_microfacet(m))
-      throw error("--export: " + sc.material_label(int(i)) + " is a " + kind_name(m.kind) + ", which cannot be exported yet (tools/mitsuba_reference.py has no rough materials)");
-    if (m.albedo.type == texture::kind::image || m.albedo.type == texture::kind::noise)
-      throw error("--export: " + sc.material_label(int(i)) + " has " + describe(m.albedo) + ", which is not exported yet");
-    if (!detail::mitsuba_kind(m.kind))
-      throw error("--export: " + sc.material_label(int(i)) + " is of a kind the converter does not know");
+    const std::string label = "--export: " + sc.material_label(int(i));
+    if (is_custom(m)) throw error(label + " is a custom BSDF ('" + m.bsdf->name() + "'), which cannot be exported");
+    if (!detail::mitsuba_kind(m.kind)) throw error(label + " is of a kind the converter does not know");
+    if (is_microfacet(m) && m.roughness_map)
+      throw error(label + " has a roughness texture (" + describe(*m.roughness_map) + "), which Mitsuba cannot match exactly");
+    if (m.kind == material_kind::rough_conductor && m.conductor.schlick)
+      throw error(label + " is a rough_conductor given by an RGB f0 (Schlick's approximation), which Mitsuba's "
+                  "roughconductor does not have; give a metal preset or eta and k");
+    if (m.albedo.type == texture::kind::noise) throw error(label + " has " + describe(m.albedo) + ", which Mitsuba does not have");
+    if (m.albedo.type == texture::kind::image && m.kind != material_kind::lambertian)
+      throw error(label + " is a " + kind_name(m.kind) + " with " + describe(m.albedo) + "; only lambertian image textures are exported");
   }
+  // An image texture is looked up by the hit's (u, v): a quad's is Mitsuba's rectangle's, a
+  // sphere's and a triangle's (barycentric) are not.
+  auto image_on = [&](int mat, const char* shape) {
+    if (sc.materials[std::size_t(mat)].albedo.type == texture::kind::image)
+      throw error("--export: " + sc.material_label(mat) + " has " + describe(sc.materials[std::size_t(mat)].albedo) +
+                  " on a " + shape + ", whose (u, v) differ from Mitsuba's; image textures are exported on quads only");
+  };
+  for (const auto& s : sc.spheres) image_on(s.material, "sphere");
+  for (const auto& t : sc.triangles) image_on(t.material, "triangle");
+  for (const auto& m : sc.meshes) image_on(m.material, "mesh");
   std::ostringstream o;
   o.precision(17);
   auto v3 = [&](const auto& v) { o << '[' << double(v.x) << ", " << double(v.y) << ", " << double(v.z) << ']'; };
+  // An image's linear texels, row 0 at the top, as a flat list r, g, b, r, ... (9 digits: floats).
+  auto texels = [&](const image& img) {
+    o << "\"width\": " << img.width << ", \"height\": " << img.height << ", \"texels\": [";
+    o.precision(9);
+    for (std::size_t k = 0; k < img.pixels.size(); ++k)
+      for (int c = 0; c < 3; ++c) o << (k + std::size_t(c) ? ", " : "") << double(img.pixels[k][c]);
+    o.precision(17);
+    o << "]";
+  };
   o << "{\n  \"width\": " << width << ", \"height\": " << height << ", \"max_depth\": " << depth
     << ",\n  \"background\": ";
   v3(sc.background);
+  o << ",\n  \"environment\": ";  // book 5.3: replaces the background
+  if (!sc.environment) o << "null";
+  else if (sc.environment->is_constant()) {
+    o << "{\"type\": \"constant\", \"radiance\": ";
+    v3(sc.environment->radiance(vec3(0, 1, 0)));
+    o << "}";
+  } else {
+    o << "{\"type\": \"map\", \"source\": \"" << detail::json_escape(sc.environment->name()) << "\", \"rotate\": "
+      << sc.environment->rotate_degrees() << ", ";
+    texels(sc.environment->map());
+    o << "}";
+  }
   o << ",\n  \"camera\": {\"position\": ";
   v3(sc.camera.position);
   o << ", \"look_at\": ";
@@ -68,7 +128,23 @@ ZRAKA_COMPILED_FN std::string mitsuba_scene_json(const scene& sc, int width, int
     o << ", \"checker\": " << (m.albedo.type == texture::kind::checker ? "true" : "false")
       << ", \"fuzz\": " << m.fuzz << ", \"ior\": " << m.ior << ", \"radiance\": ";
     v3(m.radiance);
-    o << ", \"two_sided\": " << (m.two_sided ? "true" : "false") << ", \"interior\": " << m.interior << "}";
+    o << ", \"two_sided\": " << (m.two_sided ? "true" : "false") << ", \"interior\": " << m.interior;
+    if (is_microfacet(m)) {  // book 5.4
+      o << ", \"alpha\": " << m.roughness;
+      if (m.kind == material_kind::rough_conductor) {
+        o << ", \"eta\": ";
+        v3(m.conductor.eta);
+        o << ", \"k\": ";
+        v3(m.conductor.k);
+      }
+    }
+    if (m.albedo.type == texture::kind::image) {
+      o << ", \"texture\": {\"source\": \"" << detail::json_escape(m.albedo.source) << "\", \"repeat\": " << (m.albedo.repeat ? "true" : "false")
+        << ", ";
+      texels(*m.albedo.map);
+      o << "}";
+    }
+    o << "}";
   }
   o << "],\n  \"global_medium\": " << sc.global_medium << ",\n  \"media\": [";  // book 6.1
   for (std::size_t i = 0; i < sc.media.size(); ++i) {

@@ -43,6 +43,8 @@ namespace detail {
 ZRAKA_COMPILED_FN std::filesystem::path output_folder_in(const std::filesystem::path& resource_root);
 ZRAKA_COMPILED_FN std::filesystem::path output_file_in(const std::filesystem::path& name,
                                                        const std::filesystem::path& folder);
+ZRAKA_COMPILED_FN std::filesystem::path input_file_in(const std::filesystem::path& name,
+                                                      const std::filesystem::path& folder);
 }  // namespace detail
 
 // Where a relative output name goes: <checkout>/build/out/ when the program runs inside the
@@ -59,11 +61,7 @@ inline std::filesystem::path output_file(const std::filesystem::path& name) {
 // An input that an earlier run wrote (e.g. --reference ref.pfm): as given when it exists there,
 // else where output_file put it; a missing file is then reported under the name as given.
 inline std::filesystem::path input_file(const std::filesystem::path& name) {
-  std::error_code ec;
-  if (name.has_parent_path() || std::filesystem::exists(name, ec)) return name;
-  const std::filesystem::path dir = output_folder();
-  if (!dir.empty() && std::filesystem::exists(dir / name, ec)) return output_file(name);
-  return name;
+  return detail::input_file_in(name, output_folder());
 }
 
 // The folder for programs that write several files (--out-dir): output_folder(), or ".".
@@ -88,9 +86,7 @@ struct program_options {
 
   cli_app app;  // the program's own options: app.add_option("--name", value, "help")
 
-  program_options(std::string description, take options) : app(description), taken_(options) {
-    app.always_capture_default();  // --help shows every default, the chapter's own too
-  }
+  ZRAKA_COMPILED_FN program_options(std::string description, take options);
 
   // Adds the shared options, parses, checks. Returns the exit code when main should stop now.
   std::optional<int> parse(int argc, char** argv) {
@@ -168,6 +164,19 @@ ZRAKA_COMPILED_FN std::filesystem::path detail::output_file_in(const std::filesy
   return ec || rel.empty() ? dir / name : rel;
 }
 
+ZRAKA_COMPILED_FN std::filesystem::path detail::input_file_in(const std::filesystem::path& name,
+                                                              const std::filesystem::path& folder) {
+  std::error_code ec;
+  if (name.has_parent_path() || std::filesystem::exists(name, ec)) return name;
+  if (!folder.empty() && std::filesystem::exists(folder / name, ec)) return output_file_in(name, folder);
+  return name;
+}
+
+ZRAKA_COMPILED_FN program_options::program_options(std::string description, take options)
+    : app(description), taken_(options) {
+  app.always_capture_default();  // --help shows every default, the chapter's own too
+}
+
 ZRAKA_COMPILED_FN std::optional<int> program_options::parse_shared(int argc, char** argv) {
   add_shared();
   if (const auto done = parse_command_line(app, argc, argv)) return done;
@@ -204,7 +213,7 @@ ZRAKA_COMPILED_FN void program_options::add_shared() {
   };
   if (has(taken_, take::scene))
     app.add_option("--scene", scene, "a scene name (" + (scene_names.empty() ? "see named_scenes.hpp" : scene_names) +
-                                         ") or a .yaml scene file")
+                                         ") or a .yaml or Mitsuba .xml scene file")
       ;
   if (has(taken_, take::size)) {
     dflt(app.add_option("--width", width, "image width in pixels"));

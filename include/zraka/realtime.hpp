@@ -59,6 +59,12 @@ class gpu_renderer {
     materials_ = upload(s.materials);
     lights_ = upload(s.lights);
     light_tris_ = upload(s.light_triangles);
+    textures_ = upload(s.textures);
+    texels_ = upload(s.texels);
+    tri_uvs_ = upload(s.triangle_uvs);
+    env_ = c.make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_environment), &s.environment);
+    env_tables_ = upload(s.env_tables);
+    noise_ = upload(s.noise_permutation);
     camera_ = c.make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_camera), &s.camera);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     accum_ = c.make_buffer(CL_MEM_READ_WRITE, pixels * 16);
@@ -81,7 +87,8 @@ class gpu_renderer {
                  camera_, accum_, accum_sq_, display_, cl_int(s.spheres.size()), cl_int(s.quads.size()),
                  cl_int(s.planes.size()), cl_int(s.lights.size()), cl_int(s.nodes.size()),
                  cl_uint(width_), cl_uint(height_), cl_uint(samples_), cl_uint(n),
-                 cl_ulong(seed_), bg);
+                 cl_ulong(seed_), bg, textures_, texels_, tri_uvs_, cl_int(s.triangle_uvs.empty() ? 0 : 1), env_,
+                 env_tables_, noise_);
     cl::run_2d(ctx_, kernel_, std::size_t(width_), std::size_t(height_));
     samples_ += n;
   }
@@ -175,7 +182,7 @@ class gpu_renderer {
   cl::program_handle program_;
   cl::kernel_handle kernel_;
   cl::buffer spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, light_tris_, camera_, accum_,
-      accum_sq_, display_;
+      accum_sq_, display_, textures_, texels_, tri_uvs_, env_, env_tables_, noise_;
   std::uint32_t samples_ = 0;
   using event_handle = cl::handle<cl_event, clReleaseEvent>;
   event_handle pending_;

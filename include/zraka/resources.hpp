@@ -19,16 +19,24 @@ inline std::filesystem::path resource_root() {
   return ZRAKA_RESOURCE_DIR;
 }
 
-// A path relative to the root, e.g. resource_path("scenes/teapot.bpt"). An absolute path or one
-// that exists relative to the working directory is returned as it is.
-inline std::filesystem::path resource_path(std::string_view relative) {
+namespace detail {
+// resource_path with the root given: for code compiled into zraka::compiled, which must not read
+// ZRAKA_RESOURCE_DIR itself (compiled.hpp).
+inline std::filesystem::path resource_path_in(std::string_view relative, const std::filesystem::path& root) {
   const std::filesystem::path p(relative);
   if (p.is_absolute() || std::filesystem::exists(p)) return p;
-  const auto full = resource_root() / p;
+  const auto full = root / p;
   if (!std::filesystem::exists(full))
     throw error("resource not found: " + full.string() +
                 " (set ZRAKA_ROOT to the folder that holds scenes/ and kernels/)");
   return full;
+}
+}  // namespace detail
+
+// A path relative to the root, e.g. resource_path("scenes/teapot.bpt"). An absolute path or one
+// that exists relative to the working directory is returned as it is.
+inline std::filesystem::path resource_path(std::string_view relative) {
+  return detail::resource_path_in(relative, resource_root());
 }
 
 }  // namespace zraka

@@ -1,8 +1,10 @@
 #pragma once
-// What a program's --scene names: a name from the registry (named_scenes.hpp) or a path to a
-// .yaml scene file. Every program that takes a scene reads it through load_scene_argument, so
-// `--scene cornell` is one scene everywhere. Needs yaml-cpp (scene_file.hpp).
+// What a program's --scene names: a name from the registry (named_scenes.hpp), a path to a
+// .yaml scene file or to a Mitsuba 3 .xml scene (mitsuba_xml.hpp). Every program that takes a
+// scene reads it through load_scene_argument, so `--scene cornell` is one scene everywhere.
+// Needs yaml-cpp (scene_file.hpp) and, for .xml, pugixml.
 #include <zraka/error.hpp>
+#include <zraka/mitsuba_xml.hpp>
 #include <zraka/named_scenes.hpp>
 #include <zraka/resources.hpp>
 #include <zraka/scene_file.hpp>
@@ -13,23 +15,36 @@
 namespace zraka {
 
 inline bool is_scene_path(const std::string& arg) {
-  return arg.ends_with(".yaml") || arg.ends_with(".yml") || arg.find('/') != std::string::npos;
+  return arg.ends_with(".yaml") || arg.ends_with(".yml") || arg.ends_with(".xml") || arg.find('/') != std::string::npos;
 }
+
+namespace detail {
+// Compiled once with the scene-file reader (ZRAKA_SCENE_FILE_FN, scene_file.hpp); the resource root
+// is the program's, passed in.
+ZRAKA_SCENE_FILE_FN loaded_scene load_scene_argument_in(const std::string& arg, const std::filesystem::path& root)
+#if ZRAKA_SCENE_FILE_DEFINITIONS
+{
+  if (is_scene_path(arg)) {
+    const std::filesystem::path p(arg);
+    std::error_code ec;
+    if (!std::filesystem::exists(p, ec) && (p.is_absolute() || !std::filesystem::exists(root / p, ec)))
+      throw error("scene file not found: " + arg);
+    return is_mitsuba_xml_path(p) ? load_mitsuba_xml_in(p, root) : load_scene_file_in(p, {}, root);
+  }
+  const named_scene* n = find_named_scene(arg);
+  if (!n) throw error("unknown scene '" + arg + "' (" + named_scene_list() + ", or a .yaml or Mitsuba .xml file)");
+  if (n->build) return loaded_scene{n->build(), {}};
+  return load_scene_file_in("scenes/" + std::string(n->name) + ".yaml", {}, root);
+}
+#else
+    ;
+#endif
+}  // namespace detail
 
 // A path is looked for as given, then under the resource root; a typo is a missing file named
 // as the user wrote it, not a resource-root problem.
 inline loaded_scene load_scene_argument(const std::string& arg) {
-  if (is_scene_path(arg)) {
-    const std::filesystem::path p(arg);
-    std::error_code ec;
-    if (!std::filesystem::exists(p, ec) && (p.is_absolute() || !std::filesystem::exists(resource_root() / p, ec)))
-      throw error("scene file not found: " + arg);
-    return load_scene_file(p);
-  }
-  const named_scene* n = find_named_scene(arg);
-  if (!n) throw error("unknown scene '" + arg + "' (" + named_scene_list() + ", or a .yaml file)");
-  if (n->build) return loaded_scene{n->build(), {}};
-  return load_scene_file("scenes/" + std::string(n->name) + ".yaml");
+  return detail::load_scene_argument_in(arg, resource_root());
 }
 
 }  // namespace zraka

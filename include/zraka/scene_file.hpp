@@ -58,6 +58,21 @@
 #include <string>
 #include <vector>
 
+// Reading a scene is compiled once into zraka::compiled when zraka is built with yaml-cpp
+// (ZRAKA_COMPILED_SCENE_FILE, see compiled.hpp): ~60% of a scene-loading chapter's object code.
+// Under it the readers below are only declared: a program's unit then parses none of their
+// ~1000 lines nor instantiates what they use (about 1.3 CPU-s of each scene-loading chapter).
+// The resource root is an argument: only the program knows its own (ZRAKA_RESOURCE_DIR).
+#if defined(ZRAKA_COMPILED_SCENE_FILE)
+#define ZRAKA_SCENE_FILE_FN
+#else
+#define ZRAKA_SCENE_FILE_FN inline
+#endif
+#if !defined(ZRAKA_COMPILED_SCENE_FILE) || defined(ZRAKA_COMPILING)
+#define ZRAKA_SCENE_FILE_DEFINITIONS 1
+#else
+#define ZRAKA_SCENE_FILE_DEFINITIONS 0
+#endif
 namespace zraka {
 
 // Defaults that belong to no struct.
@@ -123,6 +138,7 @@ class scene_node {
   YAML::Node need(const std::string& key) const;
 };
 
+#if ZRAKA_SCENE_FILE_DEFINITIONS
 namespace detail {
 
 class scene_reader {
@@ -1095,80 +1111,68 @@ class scene_reader {
 }  // namespace detail
 
 // ---------------------------------------------------------------- scene_node
-inline YAML::Node scene_node::get(const std::string& key) const {
+ZRAKA_SCENE_FILE_FN YAML::Node scene_node::get(const std::string& key) const {
   // A factory reading a key it did not register is a bug in the program, not in the scene.
   if (std::find(keys_.begin(), keys_.end(), key) == keys_.end())
     throw error("scene registry: the factory for '" + type_ + "' reads key '" + key + "', which it did not register");
   const YAML::Node& n = n_;  // const: looking up a key must not add it
   return n[key];
 }
-inline YAML::Node scene_node::need(const std::string& key) const {
+ZRAKA_SCENE_FILE_FN YAML::Node scene_node::need(const std::string& key) const {
   const YAML::Node v = get(key);
   if (!v) r_.fail(n_, field(key), "required, but missing");
   return v;
 }
-inline void scene_node::fail(const std::string& key, const std::string& what) const {
+ZRAKA_SCENE_FILE_FN void scene_node::fail(const std::string& key, const std::string& what) const {
   const YAML::Node v = get(key);
   r_.fail(v ? v : n_, field(key), what);
 }
-inline double scene_node::number(const std::string& key) const {
+ZRAKA_SCENE_FILE_FN double scene_node::number(const std::string& key) const {
   const double x = r_.number(need(key), field(key));
   resolved_[key] = r_.num(x);
   return x;
 }
-inline double scene_node::number(const std::string& key, double fallback) const {
+ZRAKA_SCENE_FILE_FN double scene_node::number(const std::string& key, double fallback) const {
   return has(key) ? number(key) : (resolved_[key] = r_.num(fallback), fallback);
 }
-inline long long scene_node::integer(const std::string& key, long long lo, long long hi, long long fallback) const {
+ZRAKA_SCENE_FILE_FN long long scene_node::integer(const std::string& key, long long lo, long long hi, long long fallback) const {
   const long long x = has(key) ? r_.integer(get(key), field(key), lo, hi) : fallback;
   resolved_[key] = x;
   return x;
 }
-inline vec3 scene_node::point(const std::string& key) const {
+ZRAKA_SCENE_FILE_FN vec3 scene_node::point(const std::string& key) const {
   const vec3 p = r_.vector3(need(key), field(key));
   resolved_[key] = r_.flow(p);
   return p;
 }
-inline vec3 scene_node::point(const std::string& key, const vec3& fallback) const {
+ZRAKA_SCENE_FILE_FN vec3 scene_node::point(const std::string& key, const vec3& fallback) const {
   return has(key) ? point(key) : (resolved_[key] = r_.flow(fallback), fallback);
 }
-inline vec3 scene_node::direction(const std::string& key) const {
+ZRAKA_SCENE_FILE_FN vec3 scene_node::direction(const std::string& key) const {
   const vec3 d = r_.vector3(need(key), field(key));
   const vec3 u = normalize_or_zero(d);
   if (u == vec3(0) || !is_finite(u)) fail(key, "a direction must not be zero");
   resolved_[key] = r_.flow(d);
   return u;
 }
-inline vec3 scene_node::direction(const std::string& key, const vec3& fallback) const {
+ZRAKA_SCENE_FILE_FN vec3 scene_node::direction(const std::string& key, const vec3& fallback) const {
   return has(key) ? direction(key) : (resolved_[key] = r_.flow(fallback), normalize_or_zero(fallback));
 }
-inline rgb scene_node::colour(const std::string& key) const {
+ZRAKA_SCENE_FILE_FN rgb scene_node::colour(const std::string& key) const {
   const rgb c = r_.colour(need(key), field(key));
   resolved_[key] = r_.flow(c);
   return c;
 }
-inline rgb scene_node::colour(const std::string& key, const rgb& fallback) const {
+ZRAKA_SCENE_FILE_FN rgb scene_node::colour(const std::string& key, const rgb& fallback) const {
   return has(key) ? colour(key) : (resolved_[key] = r_.flow(fallback), fallback);
 }
-inline std::string scene_node::text(const std::string& key, const std::string& fallback) const {
+ZRAKA_SCENE_FILE_FN std::string scene_node::text(const std::string& key, const std::string& fallback) const {
   const std::string s = has(key) ? r_.text(get(key), field(key)) : fallback;
   resolved_[key] = s;
   return s;
 }
+#endif  // ZRAKA_SCENE_FILE_DEFINITIONS
 
-// Reading a scene is compiled once into zraka::compiled when zraka is built with yaml-cpp
-// (ZRAKA_COMPILED_SCENE_FILE, see compiled.hpp): ~60% of a scene-loading chapter's object code.
-// The resource root is an argument: only the program knows its own (ZRAKA_RESOURCE_DIR).
-#if defined(ZRAKA_COMPILED_SCENE_FILE)
-#define ZRAKA_SCENE_FILE_FN
-#else
-#define ZRAKA_SCENE_FILE_FN inline
-#endif
-#if !defined(ZRAKA_COMPILED_SCENE_FILE) || defined(ZRAKA_COMPILING)
-#define ZRAKA_SCENE_FILE_DEFINITIONS 1
-#else
-#define ZRAKA_SCENE_FILE_DEFINITIONS 0
-#endif
 namespace detail {
 ZRAKA_SCENE_FILE_FN loaded_scene parse_scene_in(const std::string& text, const std::string& name,
                                                 const std::filesystem::path& dir, const scene_registry& types,
@@ -1189,10 +1193,22 @@ inline loaded_scene parse_scene(const std::string& text, const std::string& name
   return detail::parse_scene_in(text, name, dir, types, resource_root());
 }
 
+namespace detail {
+ZRAKA_SCENE_FILE_FN loaded_scene load_scene_file_in(const std::filesystem::path& path, const scene_registry& types,
+                                                    const std::filesystem::path& root)
+#if ZRAKA_SCENE_FILE_DEFINITIONS
+{
+  const std::filesystem::path p = resource_path_in(path.string(), root);
+  return parse_scene_in(read_input_file(p), path.string(), p.parent_path(), types, root);
+}
+#else
+    ;
+#endif
+}  // namespace detail
+
 // Reads a scene file: a path as given, or relative to the resource root (resources.hpp).
 inline loaded_scene load_scene_file(const std::filesystem::path& path, const scene_registry& types = {}) {
-  const std::filesystem::path p = resource_path(path.string());
-  return parse_scene(read_input_file(p), path.string(), p.parent_path(), types);
+  return detail::load_scene_file_in(path, types, resource_root());
 }
 
 }  // namespace zraka

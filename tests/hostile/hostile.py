@@ -84,6 +84,15 @@ def make_inputs():
     os.mkdir("folder.yaml")
     os.mkdir("outdir")
     write("fifo-mesh.yaml", "objects: [{type: mesh, file: fifo.obj}]\n")
+    # Mitsuba XML (mitsuba_xml.hpp): a DTD's entities are never expanded; 120000 nested elements;
+    # an OBJ that is a FIFO.
+    write("laughs.xml", "<!DOCTYPE scene [<!ENTITY l0 \"lol\">" +
+          "".join(f"<!ENTITY l{i} \"" + f"&l{i-1};" * 10 + "\">" for i in range(1, 10)) +
+          "]>\n<scene version=\"3.0.0\"><bsdf type=\"diffuse\" id=\"&l9;\"/></scene>\n")
+    write("deep.xml", "<scene version=\"3.0.0\">" + "<b>" * 120000 + "</b>" * 120000 + "</scene>\n")
+    write("fifo-mesh.xml", "<scene version=\"3.0.0\"><shape type=\"obj\"><string name=\"filename\" value=\"fifo.obj\"/>"
+          "<boolean name=\"face_normals\" value=\"true\"/>"
+          "<bsdf type=\"dielectric\"/></shape></scene>\n")
     write("urandom-mesh.yaml", "objects: [{type: mesh, file: /dev/urandom}]\n")
     write("stdin-mesh.yaml", "objects: [{type: mesh, file: /dev/stdin}]\n")
     # One face with 200000 corners: legal, 199998 triangles, about 1 MB.
@@ -151,6 +160,11 @@ def cases(scenes, pathtrace):
         ("a teapot of 3.97 M triangles, at the limit (legal)",
          [P, "--scene", "limit-teapot.yaml", "--width", "16", "--height", "16", "--spp", "1", "--out", "big.png"], 0,
          r"wrote .*big.png", None),
+        ("XML entities (a billion laughs in a DTD)", [S, "--scene", "laughs.xml"], 1,
+         r"error: laughs.xml:2: <scene>: the scene has no <sensor>", None),
+        ("120000 nested XML elements", PT + ["--scene", "deep.xml"], 1,
+         r"error: deep.xml:1: <b>: unknown element <b>", None),
+        ("XML mesh is a FIFO", [S, "--scene", "fifo-mesh.xml"], 1, r"fifo.obj: is a FIFO \(named pipe\)", None),
         ("mesh is a FIFO", [S, "--scene", "fifo-mesh.yaml"], 1,
          r"objects\[0\].file: fifo.obj: is a FIFO \(named pipe\); only regular files are read", None),
         ("scene is a FIFO", [S, "--scene", "fifo.yaml"], 1, r"error: fifo.yaml: is a FIFO \(named pipe\); only regular files", None),
