@@ -6,7 +6,7 @@
 #include <zraka/resources.hpp>
 #include <zraka/scene_file.hpp>
 
-#include "error_of.hpp"
+#include "expected_errors.hpp"
 
 #include <doctest/doctest.h>
 
@@ -16,6 +16,7 @@
 
 using namespace zraka;
 namespace fs = std::filesystem;
+using zraka_test::error_of;
 
 namespace {
 fs::path meshes() { return resource_root() / "scenes" / "meshes"; }

@@ -4,8 +4,6 @@
 #include <zraka/obj_file.hpp>
 #include <zraka/resources.hpp>
 
-#include "error_of.hpp"
-
 #include <doctest/doctest.h>
 
 #include "expected_errors.hpp"
