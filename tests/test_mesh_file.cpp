@@ -26,6 +26,13 @@ std::string text_of(const fs::path& p) {
   s << in.rdbuf();
   return s.str();
 }
+// quad.gltf's text to be changed and written into `dir` (made here), its texture found from there.
+std::string quad_gltf_text(const fs::path& dir) {
+  fs::create_directories(dir);
+  std::string t = text_of(meshes() / "quad.gltf");
+  t.replace(t.find("../uv-grid.png"), 14, (resource_root() / "scenes" / "uv-grid.png").string());
+  return t;
+}
 // The texel that a ray straight down -z onto the unit quad at (x, y) reaches.
 rgb texel_at(const mesh& m, const texture& t, double x, double y) {
   hit rec;
@@ -122,10 +129,7 @@ TEST_CASE("mesh files: limits, types, and only regular files (the .bin too)") {
 
 TEST_CASE("mesh files: a glTF material that is more than a base colour is refused by name") {
   const fs::path dir = fs::temp_directory_path() / "zraka-test-mesh-file";
-  fs::create_directories(dir);
-  std::string t = text_of(meshes() / "quad.gltf");
-  const std::string grid = (resource_root() / "scenes" / "uv-grid.png").string();
-  t.replace(t.find("../uv-grid.png"), 14, grid);
+  std::string t = quad_gltf_text(dir);
   t.replace(t.find("\"metallicFactor\": 0"), 19, "\"metallicFactor\": 1");
   std::ofstream(dir / "metal.gltf") << t;
   const mesh_file_contents c = load_mesh_file(dir / "metal.gltf");
@@ -137,10 +141,7 @@ TEST_CASE("mesh files: a glTF material that is more than a base colour is refuse
 
 TEST_CASE("mesh files: a glTF node's transform moves points, turns normals and keeps the winding") {
   const fs::path dir = fs::temp_directory_path() / "zraka-test-mesh-node";
-  fs::create_directories(dir);
-  std::string t = text_of(meshes() / "quad.gltf");
-  const std::string grid = (resource_root() / "scenes" / "uv-grid.png").string();
-  t.replace(t.find("../uv-grid.png"), 14, grid);
+  std::string t = quad_gltf_text(dir);
   // A mirror in x (scale -1), then a quarter turn about y (quaternion x y z w), then a move.
   const std::size_t at = t.find("\"mesh\": 0");
   REQUIRE(at != std::string::npos);
