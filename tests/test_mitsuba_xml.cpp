@@ -188,6 +188,28 @@ TEST_CASE("Mitsuba XML: an obj's to_world becomes zraka's scale, rotate, transla
   }
 }
 
+TEST_CASE("Mitsuba XML: a ply shape is read by mesh_file.hpp, the same triangles as the obj of the same sphere") {
+  const fs::path meshes = resource_root() / "scenes" / "meshes";
+  auto read = [&](const std::string& type, const std::string& file) {
+    const std::string shape = "<shape type=\"" + type + "\"><string name=\"filename\" value=\"" + file + "\"/>"
+                              "<boolean name=\"face_normals\" value=\"true\"/>"
+                              "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/></bsdf></shape>";
+    const scene sc = parse_xml(scene_xml(shape), meshes).sc;
+    REQUIRE(sc.meshes.size() == 1);
+    return sc.meshes[0].shape;
+  };
+  const mesh ply = read("ply", "sphere.ply"), obj = read("obj", "sphere.obj");
+  REQUIRE(ply.triangle_count() == obj.triangle_count());
+  REQUIRE(ply.triangle_count() > 0);
+  for (std::size_t t = 0; t < ply.triangles.size(); t += 37)
+    for (int k = 0; k < 3; ++k)
+      CHECK(near(ply.positions[ply.triangles[t][k]], obj.positions[obj.triangles[t][k]], 1e-6));
+  // Flat shading is required of a ply as of an obj.
+  const std::string smooth = "<shape type=\"ply\"><string name=\"filename\" value=\"sphere.ply\"/>"
+                             "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/></bsdf></shape>";
+  CHECK(error_of([&] { parse_xml(scene_xml(smooth), meshes); }).find("face_normals") != std::string::npos);
+}
+
 TEST_CASE("Mitsuba XML: defaults and $name substitution; a default's value is not substituted again") {
   const std::string body = "<default name=\"r\" value=\"0.25\"/><default name=\"loop\" value=\"$loop\"/>"
                            "<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/><bsdf type=\"dielectric\"/></shape>";

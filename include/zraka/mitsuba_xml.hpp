@@ -10,7 +10,7 @@
 //   sensor perspective (fov, fov_axis, near/far clip left out) with to_world, film hdrfilm
 //   (width, height, a box rfilter), sampler independent (sample_count, seed), integrator path
 //   (max_depth: Mitsuba counts path segments, zraka bounces, so zraka's max_depth is one less);
-//   shapes sphere, rectangle, cube, obj (face_normals: zraka's path tracers shade meshes flat);
+//   shapes sphere, rectangle, cube, obj and ply (mesh_file.hpp; face_normals: zraka's path tracers shade meshes flat);
 //   a bitmap texture as a diffuse reflectance, on rectangles (whose uv were checked); BSDFs twosided around diffuse, conductor (material
 //   'none') or roughconductor, and dielectric, roughdielectric (both GGX); emitters area (on a
 //   shape whose BSDF is black), point, constant, envmap (rotated about +y only);
@@ -20,8 +20,8 @@
 // Refused because zraka's model differs: a bare diffuse or conductor (Mitsuba's are black from
 // behind, zraka's reflect on both sides: wrap them in twosided), Beckmann roughness, the
 // checkerboard (Mitsuba's is in uv space, zraka's in world space), a bitmap on other shapes than
-// rectangles or anywhere but a diffuse reflectance, disks (no disk shape), ply (no PLY reader
-// yet), Mitsuba's gaussian pixel filter
+// rectangles or anywhere but a diffuse reflectance, disks (no disk shape), Mitsuba's gaussian
+// pixel filter
 // (zraka's is a box), a mirroring or shearing to_world where zraka's shape cannot follow it.
 // Limits as for YAML scenes (limits.hpp): file_bytes, and yaml_nodes for the XML's elements.
 // Needs pugixml (libpugixml-dev) and yaml-cpp; compiled once into zraka::compiled when zraka is
@@ -48,7 +48,7 @@
 #if ZRAKA_MITSUBA_XML_DEFINITIONS && __has_include(<pugixml.hpp>)
 #include <zraka/affine.hpp>
 #include <zraka/limits.hpp>
-#include <zraka/obj_file.hpp>
+#include <zraka/mesh_file.hpp>
 
 #include <pugixml.hpp>
 #include <yaml-cpp/yaml.h>
@@ -806,9 +806,9 @@ class mitsuba_reader {
     if (type == "sphere") p = parameters(n, {"center", "radius", "to_world"});
     else if (type == "rectangle" || type == "cube") p = parameters(n, {"to_world"});
     else if (type == "obj") p = parameters(n, {"filename", "to_world", "face_normals", "flip_tex_coords"});
-    else if (type == "ply") fail(n, "type", "zraka cannot read PLY meshes yet (obj is read)");
+    else if (type == "ply") p = parameters(n, {"filename", "to_world", "face_normals"});
     else if (type == "disk") fail(n, "type", "zraka has no disk shape yet");
-    else fail(n, "type", "unknown plugin '" + type + "' (zraka reads the shapes sphere, rectangle, cube, obj)");
+    else fail(n, "type", "unknown plugin '" + type + "' (zraka reads the shapes sphere, rectangle, cube, obj, ply)");
 
     const affine a = transform_param(p, "to_world");
     const pugi::xml_node tw = param(p, "to_world") ? param(p, "to_world") : n;
@@ -857,17 +857,17 @@ class mitsuba_reader {
         add(o);
       }
       // [end]
-    } else {  // obj
+    } else {  // obj or ply (mesh_file.hpp reads both)
       const pugi::xml_node fn = param(p, "filename");
       const auto [file, full] = file_param(n, p);
-      (void)bool_param(p, "flip_tex_coords", true);  // uv only matter to textures, which an obj does not take
+      if (type == "obj") (void)bool_param(p, "flip_tex_coords", true);  // uv only matter to textures, which a mesh does not take here
       // Mitsuba shades a mesh with the file's vn (or smooth normals it makes) unless face_normals
       // is set; zraka's path tracers shade every triangle with its own normal: flat.
       if (!bool_param(p, "face_normals", false))
         fail(param(p, "face_normals") ? param(p, "face_normals") : n,
              "zraka's path tracers shade meshes flat (Mitsuba smooths them by default): add <boolean name=\"face_normals\" value=\"true\"/>");
       try {  // the file's errors at this line, before the YAML reader loads it again
-        (void)load_obj(full);
+        (void)read_mesh_file(full);
       } catch (const error& e) {
         fail(fn, "value", e.what());
       }
