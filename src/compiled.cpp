@@ -18,6 +18,7 @@
 #include <zraka/named_scenes.hpp>
 #include <zraka/obj_file.hpp>
 #include <zraka/program_options.hpp>
+#include <zraka/progressive.hpp>
 #include <zraka/render.hpp>
 #include <zraka/scene_registry.hpp>
 #if defined(ZRAKA_COMPILED_MESH_FILE)  // built with assimp

@@ -7,8 +7,10 @@
 // Sample s of pixel p always uses the stream rng(seed, p, s), whichever pass computes it, so the
 // image after N spp holds the same samples as a single render of N spp (equal up to float
 // rounding of the running sums), for any number of threads.
+#include <zraka/compiled.hpp>
 #include <zraka/convergence.hpp>
 #include <zraka/error.hpp>
+#include <zraka/function_ref.hpp>
 #include <zraka/image.hpp>
 #include <zraka/render.hpp>
 #include <zraka/rng.hpp>
@@ -38,54 +40,29 @@ struct progressive_totals {
   bool out_of_time = false;  // the budget stopped it before max_spp
 };
 
-// [listing progressive]
+// What runs after every pass, its type left out (function_ref.hpp): false stops the doubling.
+using pass_fn_ref = function_ref<bool(const image&, const progressive_totals&)>;
+
 // fn(sample_context&) -> rgb as for render(); on_pass(const image& mean, const progressive_totals&)
-// runs after every pass; if it returns a bool, false stops the doubling there.
+// runs after every pass; if it returns a bool, false stops the doubling there. The passes are
+// render_progressive_with's, compiled once (below).
+ZRAKA_COMPILED_FN image render_progressive_with(int width, int height, const progressive_options& opt,
+                                                sample_fn_ref fn, pass_fn_ref on_pass,
+                                                progressive_totals* totals_out);
 template <class SampleFn, class PassFn>
 image render_progressive(int width, int height, const progressive_options& opt, SampleFn&& fn,
                          PassFn&& on_pass, progressive_totals* totals_out = nullptr) {
-  if (opt.max_spp < 1) throw error("--spp must be at least 1, got " + std::to_string(opt.max_spp));
-  image::check_size(width, height);
-  check_render_size(width, height, opt.max_spp);  // before the images are made
-  if (!(opt.time_budget >= 0)) throw error("--time-budget must not be negative");
-  image mean(width, height), pass(width, height);
-  std::vector<vec3> sum(mean.pixels.size(), vec3(0));
-  progressive_totals tot;
-  const stopwatch clock;
-  while (tot.spp < opt.max_spp) {
-    const int n = std::min(std::max(tot.spp, 1), opt.max_spp - tot.spp);  // doubles the total
-    // The next pass costs about as much as all before it: skip it if that would overrun.
-    if (opt.time_budget > 0 && tot.spp > 0 && clock.seconds() * (1.0 + double(n) / tot.spp) > opt.time_budget) {
-      tot.out_of_time = true;
-      break;
-    }
-    const int base = tot.spp;
-    const render_stats s = render(pass, n, opt.seed, [&](sample_context& c) {
-      const auto pixel = std::uint32_t(c.y) * std::uint32_t(width) + std::uint32_t(c.x);
-      rng g(opt.seed, pixel, std::uint32_t(base + c.sample));  // the sample's own stream
-      sample_context mine{c.x, c.y, base + c.sample, opt.max_spp, g, c.rays};
-      return fn(mine);
-    }, opt.render);
-    tot.spp += n;
-    tot.stats.samples += s.samples, tot.stats.rays += s.rays, tot.stats.nonfinite += s.nonfinite;
-    tot.stats.threads = s.threads;
-    for (std::size_t i = 0; i < sum.size(); ++i) {
-      sum[i] += vec3(pass.pixels[i]) * double(n);
-      mean.pixels[i] = rgb(sum[i] / double(tot.spp));
-    }
-    tot.seconds = tot.stats.seconds = clock.seconds();
-    const image& m = mean;
-    const progressive_totals& t = tot;
+  auto pass = [&](const image& m, const progressive_totals& t) {
     if constexpr (std::is_same_v<decltype(on_pass(m, t)), bool>) {
-      if (!on_pass(m, t)) break;  // the caller has seen enough
+      return bool(on_pass(m, t));
     } else {
       on_pass(m, t);
+      return true;
     }
-  }
-  if (totals_out) *totals_out = tot;
-  return mean;
+  };
+  auto sample = [&fn](sample_context& c) { return fn(c); };  // fn may be a plain function
+  return render_progressive_with(width, height, opt, sample_fn_ref(sample), pass_fn_ref(pass), totals_out);
 }
-// [end]
 
 // [listing seconds-to-reach]
 // When did a progressive run's error (column `column`) first fall to `target`? Between the two
@@ -106,5 +83,50 @@ inline double seconds_to_reach(const convergence_log& log, double target, std::s
   return std::numeric_limits<double>::quiet_NaN();
 }
 // [end]
+
+#if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
+// [listing progressive]
+// fn(sample_context&) -> rgb as for render(); on_pass(mean, totals) runs after every pass and
+// returns false to stop the doubling there.
+ZRAKA_COMPILED_FN image render_progressive_with(int width, int height, const progressive_options& opt,
+                                                sample_fn_ref fn, pass_fn_ref on_pass,
+                                                progressive_totals* totals_out) {
+  if (opt.max_spp < 1) throw error("--spp must be at least 1, got " + std::to_string(opt.max_spp));
+  image::check_size(width, height);
+  check_render_size(width, height, opt.max_spp);  // before the images are made
+  if (!(opt.time_budget >= 0)) throw error("--time-budget must not be negative");
+  image mean(width, height), pass(width, height);
+  std::vector<vec3> sum(mean.pixels.size(), vec3(0));
+  progressive_totals tot;
+  const stopwatch clock;
+  while (tot.spp < opt.max_spp) {
+    const int n = std::min(std::max(tot.spp, 1), opt.max_spp - tot.spp);  // doubles the total
+    // The next pass costs about as much as all before it: skip it if that would overrun.
+    if (opt.time_budget > 0 && tot.spp > 0 && clock.seconds() * (1.0 + double(n) / tot.spp) > opt.time_budget) {
+      tot.out_of_time = true;
+      break;
+    }
+    const int base = tot.spp;
+    const render_stats s = render_with(pass, n, opt.seed, [&](sample_context& c) {
+      const auto pixel = std::uint32_t(c.y) * std::uint32_t(width) + std::uint32_t(c.x);
+      rng g(opt.seed, pixel, std::uint32_t(base + c.sample));  // the sample's own stream
+      sample_context mine{c.x, c.y, base + c.sample, opt.max_spp, g, c.rays};
+      return fn(mine);
+    }, opt.render);
+    tot.spp += n;
+    tot.stats.samples += s.samples, tot.stats.rays += s.rays, tot.stats.nonfinite += s.nonfinite;
+    tot.stats.threads = s.threads;
+    for (std::size_t i = 0; i < sum.size(); ++i) {
+      sum[i] += vec3(pass.pixels[i]) * double(n);
+      mean.pixels[i] = rgb(sum[i] / double(tot.spp));
+    }
+    tot.seconds = tot.stats.seconds = clock.seconds();
+    if (!on_pass(mean, tot)) break;  // the caller has seen enough
+  }
+  if (totals_out) *totals_out = tot;
+  return mean;
+}
+// [end]
+#endif  // ZRAKA_COMPILED_DEFINITIONS
 
 }  // namespace zraka

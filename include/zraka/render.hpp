@@ -11,6 +11,7 @@
 // does not turn the pixel black or white); the count is reported, because it signals a bug.
 #include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
+#include <zraka/function_ref.hpp>
 #include <zraka/image.hpp>
 #include <zraka/limits.hpp>
 #include <zraka/rng.hpp>
@@ -57,12 +58,42 @@ struct sample_context {
 // 100000 would otherwise end in std::terminate when the system runs out of threads.
 ZRAKA_COMPILED_FN int resolve_threads(int requested);
 
-// [listing render]
+// The caller's per-sample function with its type left out, so that render's tiles and threads
+// (render_with) are compiled once, in zraka::compiled, rather than again for every function of
+// every program; the cost is one call through a pointer per sample. Returns the double vec3
+// that the pixel sums add (rgb converts).
+using sample_fn_ref = function_ref<vec3(sample_context&)>;
+
 // fn(sample_context&) -> rgb. Pixel (x, y) gets the mean of its spp samples; the samples of
-// pixel index x + y * width use rng(seed, index, s).
+// pixel index x + y * width use rng(seed, index, s). The work is render_with's, below.
+ZRAKA_COMPILED_FN render_stats render_with(image& img, int spp, std::uint64_t seed, sample_fn_ref fn,
+                                           const render_options& opt);
 template <class SampleFn>
-render_stats render(image& img, int spp, std::uint64_t seed, SampleFn&& fn,
-                    const render_options& opt = {}) {
+render_stats render(image& img, int spp, std::uint64_t seed, SampleFn&& fn, const render_options& opt = {}) {
+  auto sample = [&fn](sample_context& c) { return fn(c); };  // fn may be a plain function
+  return render_with(img, spp, seed, sample_fn_ref(sample), opt);
+}
+
+// "rendered 320x240, 16 spp in 1.23 s on 2 threads: 1.00 M samples/s, 3.2 M rays/s, 0 NaN/inf samples"
+inline std::string summary(const image& img, int spp, const render_stats& s) {
+  char buf[256];
+  const double secs = std::max(s.seconds, 1e-9);
+  int n = std::snprintf(buf, sizeof buf, "rendered %dx%d, %d spp in %.2f s on %d thread%s: %.2f M samples/s",
+                        img.width, img.height, spp, s.seconds, s.threads, s.threads == 1 ? "" : "s",
+                        double(s.samples) / secs * 1e-6);
+  if (s.rays > 0)
+    n += std::snprintf(buf + n, sizeof buf - size_t(n), ", %.2f M rays/s", double(s.rays) / secs * 1e-6);
+  std::snprintf(buf + n, sizeof buf - size_t(n), ", %llu NaN/inf samples",
+                static_cast<unsigned long long>(s.nonfinite));
+  return buf;
+}
+
+#if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
+// [listing render]
+// Tiles of pixels go to the threads from one shared counter; each pixel sums its samples in
+// double, in a fixed order.
+ZRAKA_COMPILED_FN render_stats render_with(image& img, int spp, std::uint64_t seed, sample_fn_ref fn,
+                                           const render_options& opt) {
   if (spp < 1) throw error("--spp must be at least 1, got " + std::to_string(spp));
   if (opt.tile < 1) throw error("tile size must be at least 1");
   check_render_size(img.width, img.height, spp);
@@ -139,21 +170,6 @@ render_stats render(image& img, int spp, std::uint64_t seed, SampleFn&& fn,
 }
 // [end]
 
-// "rendered 320x240, 16 spp in 1.23 s on 2 threads: 1.00 M samples/s, 3.2 M rays/s, 0 NaN/inf samples"
-inline std::string summary(const image& img, int spp, const render_stats& s) {
-  char buf[256];
-  const double secs = std::max(s.seconds, 1e-9);
-  int n = std::snprintf(buf, sizeof buf, "rendered %dx%d, %d spp in %.2f s on %d thread%s: %.2f M samples/s",
-                        img.width, img.height, spp, s.seconds, s.threads, s.threads == 1 ? "" : "s",
-                        double(s.samples) / secs * 1e-6);
-  if (s.rays > 0)
-    n += std::snprintf(buf + n, sizeof buf - size_t(n), ", %.2f M rays/s", double(s.rays) / secs * 1e-6);
-  std::snprintf(buf + n, sizeof buf - size_t(n), ", %llu NaN/inf samples",
-                static_cast<unsigned long long>(s.nonfinite));
-  return buf;
-}
-
-#if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
 ZRAKA_COMPILED_FN int resolve_threads(int requested) {
   if (requested < 0) throw error("--threads must be 0 (all) or positive, got " + std::to_string(requested));
   const long long cap = max_threads();
