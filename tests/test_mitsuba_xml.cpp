@@ -188,6 +188,7 @@ TEST_CASE("Mitsuba XML: an obj's to_world becomes zraka's scale, rotate, transla
   }
 }
 
+#if ZRAKA_SCENE_MESH_FILES  // built with assimp
 TEST_CASE("Mitsuba XML: a ply shape is read by mesh_file.hpp, the same triangles as the obj of the same sphere") {
   const fs::path meshes = resource_root() / "scenes" / "meshes";
   auto read = [&](const std::string& type, const std::string& file) {
@@ -209,6 +210,7 @@ TEST_CASE("Mitsuba XML: a ply shape is read by mesh_file.hpp, the same triangles
                              "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/></bsdf></shape>";
   CHECK(error_of([&] { parse_xml(scene_xml(smooth), meshes); }).find("face_normals") != std::string::npos);
 }
+#endif
 
 TEST_CASE("Mitsuba XML: defaults and $name substitution; a default's value is not substituted again") {
   const std::string body = "<default name=\"r\" value=\"0.25\"/><default name=\"loop\" value=\"$loop\"/>"

@@ -48,7 +48,12 @@
 #if ZRAKA_MITSUBA_XML_DEFINITIONS && __has_include(<pugixml.hpp>)
 #include <zraka/affine.hpp>
 #include <zraka/limits.hpp>
+// PLY through mesh_file.hpp where scene_file.hpp reads it (assimp: ZRAKA_SCENE_MESH_FILES).
+#if ZRAKA_SCENE_MESH_FILES
 #include <zraka/mesh_file.hpp>
+#else
+#include <zraka/obj_file.hpp>
+#endif
 
 #include <pugixml.hpp>
 #include <yaml-cpp/yaml.h>
@@ -866,8 +871,15 @@ class mitsuba_reader {
       if (!bool_param(p, "face_normals", false))
         fail(param(p, "face_normals") ? param(p, "face_normals") : n,
              "zraka's path tracers shade meshes flat (Mitsuba smooths them by default): add <boolean name=\"face_normals\" value=\"true\"/>");
+#if !ZRAKA_SCENE_MESH_FILES
+      if (type == "ply") fail(n, "type", "this zraka reads no PLY: it was built without assimp (Debian's libassimp-dev)");
+#endif
       try {  // the file's errors at this line, before the YAML reader loads it again
+#if ZRAKA_SCENE_MESH_FILES
         (void)read_mesh_file(full);
+#else
+        (void)load_obj(full);
+#endif
       } catch (const error& e) {
         fail(fn, "value", e.what());
       }
