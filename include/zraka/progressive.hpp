@@ -106,13 +106,8 @@ ZRAKA_COMPILED_FN image render_progressive_with(int width, int height, const pro
       tot.out_of_time = true;
       break;
     }
-    const int base = tot.spp;
-    const render_stats s = render_with(pass, n, opt.seed, [&](sample_context& c) {
-      const auto pixel = std::uint32_t(c.y) * std::uint32_t(width) + std::uint32_t(c.x);
-      rng g(opt.seed, pixel, std::uint32_t(base + c.sample));  // the sample's own stream
-      sample_context mine{c.x, c.y, base + c.sample, opt.max_spp, g, c.rays};
-      return fn(mine);
-    }, opt.render);
+    // Samples tot.spp ... tot.spp + n - 1 of each pixel, each with its own stream.
+    const render_stats s = render_with(pass, n, opt.seed, fn, opt.render, tot.spp, opt.max_spp);
     tot.spp += n;
     tot.stats.samples += s.samples, tot.stats.rays += s.rays, tot.stats.nonfinite += s.nonfinite;
     tot.stats.threads = s.threads;

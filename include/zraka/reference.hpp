@@ -43,10 +43,9 @@ inline image render_mis(const scene& sc, int spp, std::uint64_t seed, const path
 
 // 8 hex digits of the FNV-1a hash of a --scene argument's file ("c++" for a scene built in C++).
 inline std::string scene_file_hash(const std::string& arg) {
-  std::filesystem::path p;
-  if (is_scene_path(arg)) p = std::filesystem::exists(arg) ? std::filesystem::path(arg) : resource_root() / arg;
-  else if (const named_scene* n = find_named_scene(arg); n && !n->build) p = resource_root() / "scenes" / (arg + ".yaml");
-  else return "c++";
+  const std::filesystem::path file = scene_argument_file(arg, resource_root());
+  if (file.empty()) return "c++";
+  const std::filesystem::path p = detail::resource_path_in(file.string(), resource_root());
   std::uint32_t h = 2166136261u;
   for (const char c : read_input_file(p)) h = (h ^ std::uint8_t(c)) * 16777619u;
   char buf[16];

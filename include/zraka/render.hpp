@@ -65,9 +65,11 @@ ZRAKA_COMPILED_FN int resolve_threads(int requested);
 using sample_fn_ref = function_ref<vec3(sample_context&)>;
 
 // fn(sample_context&) -> rgb. Pixel (x, y) gets the mean of its spp samples; the samples of
-// pixel index x + y * width use rng(seed, index, s). The work is render_with's, below.
+// pixel index x + y * width use rng(seed, index, s). The work is render_with's, below; its
+// samples are s = first, ..., first + spp - 1 of `total` (render_progressive's passes; total 0:
+// spp), which is what sample_context says.
 ZRAKA_COMPILED_FN render_stats render_with(image& img, int spp, std::uint64_t seed, sample_fn_ref fn,
-                                           const render_options& opt);
+                                           const render_options& opt, int first = 0, int total = 0);
 template <class SampleFn>
 render_stats render(image& img, int spp, std::uint64_t seed, SampleFn&& fn, const render_options& opt = {}) {
   auto sample = [&fn](sample_context& c) { return fn(c); };  // fn may be a plain function
@@ -93,8 +95,10 @@ inline std::string summary(const image& img, int spp, const render_stats& s) {
 // Tiles of pixels go to the threads from one shared counter; each pixel sums its samples in
 // double, in a fixed order.
 ZRAKA_COMPILED_FN render_stats render_with(image& img, int spp, std::uint64_t seed, sample_fn_ref fn,
-                                           const render_options& opt) {
+                                           const render_options& opt, int first, int total) {
   if (spp < 1) throw error("--spp must be at least 1, got " + std::to_string(spp));
+  if (total == 0) total = spp;
+  if (first < 0 || first > total - spp) throw error("render_with: samples outside 0 .. total - 1");
   if (opt.tile < 1) throw error("tile size must be at least 1");
   check_render_size(img.width, img.height, spp);
   const int threads = resolve_threads(opt.threads);
@@ -118,9 +122,9 @@ ZRAKA_COMPILED_FN render_stats render_with(image& img, int spp, std::uint64_t se
           for (int x = x0; x < std::min(x0 + opt.tile, img.width); ++x) {
             const auto pixel = static_cast<std::uint32_t>(y) * std::uint32_t(img.width) + std::uint32_t(x);
             vec3 sum(0);  // double sums: the order is fixed, the result is the same everywhere
-            for (int s = 0; s < spp; ++s) {
+            for (int s = first; s < first + spp; ++s) {
               rng g(seed, pixel, static_cast<std::uint32_t>(s));
-              sample_context ctx{x, y, s, spp, g, tile_rays};
+              sample_context ctx{x, y, s, total, g, tile_rays};
               const vec3 c(fn(ctx));
               if (is_finite(c)) sum += c;
               else ++tile_bad;

@@ -18,31 +18,39 @@ inline bool is_scene_path(const std::string& arg) {
   return arg.ends_with(".yaml") || arg.ends_with(".yml") || arg.ends_with(".xml") || arg.find('/') != std::string::npos;
 }
 
+// The file a --scene argument names, as the scene reader is given it (a path as written, or
+// "scenes/<name>.yaml" under the resource root); empty for a scene built in C++. A path is looked
+// for as given, then under `root`; a typo is a missing file named as the user wrote it, not a
+// resource-root problem.
+inline std::filesystem::path scene_argument_file(const std::string& arg, const std::filesystem::path& root) {
+  if (is_scene_path(arg)) {
+    const std::filesystem::path p(arg);
+    std::error_code ec;
+    if (!std::filesystem::exists(p, ec) && (p.is_absolute() || !std::filesystem::exists(root / p, ec)))
+      throw error("scene file not found: " + arg);
+    return p;
+  }
+  const named_scene* n = find_named_scene(arg);
+  if (!n) throw error("unknown scene '" + arg + "' (" + named_scene_list() + ", or a .yaml or Mitsuba .xml file)");
+  if (n->build) return {};
+  return "scenes/" + std::string(n->name) + ".yaml";
+}
+
 namespace detail {
 // Compiled once with the scene-file reader (ZRAKA_SCENE_FILE_FN, scene_file.hpp); the resource root
 // is the program's, passed in.
 ZRAKA_SCENE_FILE_FN loaded_scene load_scene_argument_in(const std::string& arg, const std::filesystem::path& root)
 #if ZRAKA_SCENE_FILE_DEFINITIONS
 {
-  if (is_scene_path(arg)) {
-    const std::filesystem::path p(arg);
-    std::error_code ec;
-    if (!std::filesystem::exists(p, ec) && (p.is_absolute() || !std::filesystem::exists(root / p, ec)))
-      throw error("scene file not found: " + arg);
-    return is_mitsuba_xml_path(p) ? load_mitsuba_xml_in(p, root) : load_scene_file_in(p, {}, root);
-  }
-  const named_scene* n = find_named_scene(arg);
-  if (!n) throw error("unknown scene '" + arg + "' (" + named_scene_list() + ", or a .yaml or Mitsuba .xml file)");
-  if (n->build) return loaded_scene{n->build(), {}};
-  return load_scene_file_in("scenes/" + std::string(n->name) + ".yaml", {}, root);
+  const std::filesystem::path p = scene_argument_file(arg, root);
+  if (p.empty()) return loaded_scene{find_named_scene(arg)->build(), {}};
+  return is_mitsuba_xml_path(p) ? load_mitsuba_xml_in(p, root) : load_scene_file_in(p, {}, root);
 }
 #else
     ;
 #endif
 }  // namespace detail
 
-// A path is looked for as given, then under the resource root; a typo is a missing file named
-// as the user wrote it, not a resource-root problem.
 inline loaded_scene load_scene_argument(const std::string& arg) {
   return detail::load_scene_argument_in(arg, resource_root());
 }
