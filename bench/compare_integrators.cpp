@@ -29,28 +29,6 @@
 
 using namespace zraka;
 
-namespace {
-
-struct row_t {
-  std::uint64_t n;
-  double seconds, rmse;
-};
-
-// The first time the error reaches `target`, interpolated in log-log between the bracketing rows.
-std::optional<double> time_to(const std::vector<row_t>& rows, double target) {
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    if (rows[i].rmse > target) continue;
-    if (i == 0) return rows[0].seconds;
-    const row_t& a = rows[i - 1];
-    const row_t& b = rows[i];
-    if (!(a.rmse > 0 && b.rmse > 0)) return b.seconds;
-    const double f = std::log(target / a.rmse) / std::log(b.rmse / a.rmse);
-    return std::exp(std::log(a.seconds) + f * (std::log(b.seconds) - std::log(a.seconds)));
-  }
-  return std::nullopt;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   program_options cli{"Every integrator on the stiff scenes: time to reach an RMSE (book 6.5)",
@@ -128,7 +106,6 @@ int main(int argc, char** argv) {
                          }, std::nullopt});
 
       for (method_t& m : methods) {
-        std::vector<row_t> rows;
         convergence_log log(m.name + " on " + name, {"rmse", "relmse"}, "rmse", "n");
         try {
           for (int n = 1; n <= 65536; n *= 2) {
@@ -136,7 +113,6 @@ int main(int argc, char** argv) {
             const image img = m.at(n);
             const double secs = clock.seconds();
             const auto e = ref.errors_of(img);
-            rows.push_back({std::uint64_t(n), secs, e[0]});
             log.add(std::uint64_t(n), secs, e);
             if (e[0] <= target || secs > max_seconds) break;
           }
@@ -148,12 +124,13 @@ int main(int argc, char** argv) {
           continue;
         }
         log.write_csv(output_file("compare-" + std::filesystem::path(name).stem().string() + "-" + m.name + ".csv"));
-        const auto t = time_to(rows, target);
-        if (t) std::printf("%-8s %12.3f %8llu %10.5f\n", m.name.c_str(), *t, static_cast<unsigned long long>(rows.back().n),
-                           rows.back().rmse);
+        const convergence_row& last = log.rows().back();
+        if (const auto t = log.seconds_to(target))
+          std::printf("%-8s %12.3f %8llu %10.5f\n", m.name.c_str(), *t, static_cast<unsigned long long>(last.n),
+                      last.values[0]);
         else
-          std::printf("%-8s %12s %8llu %10.5f\n", m.name.c_str(), (">" + std::to_string(rows.back().seconds).substr(0, 6)).c_str(),
-                      static_cast<unsigned long long>(rows.back().n), rows.back().rmse);
+          std::printf("%-8s %12s %8llu %10.5f\n", m.name.c_str(), (">" + std::to_string(last.seconds).substr(0, 6)).c_str(),
+                      static_cast<unsigned long long>(last.n), last.values[0]);
       }
       if (bad) std::printf("  %llu NaN/inf samples in the reference\n", static_cast<unsigned long long>(bad));
     }

@@ -37,6 +37,10 @@ the film uses a box filter, as zraka's pixel sampling does.
 of the means in standard errors (the spread of the per-pixel difference over sqrt(pixels)).
 Render Mitsuba twice with different --seed and --compare its two images for its own noise;
 --diff A.pfm B.pfm compares two files without rendering (two zraka renders of different seeds).
+--doubling SECONDS renders 1, 2, 4, ... spp up to --spp, each a render of its own, and writes
+OUT-<n>spp.pfm for each, printing `pass <n> <seconds> <file>` as each ends; it stops after a
+render longer than SECONDS, or before the next one once a file OUT.stop exists (bench/time_to_error
+reads the images as they come, measures their error itself, and makes that file when it is done).
 Not part of the tests: Mitsuba is a few hundred MB from PyPI.
 """
 import argparse
@@ -231,6 +235,21 @@ def compare(ours_path, theirs, crop=None, names=("zraka", "Mitsuba")):
     print("difference of the means in standard errors: %+.1f %+.1f %+.1f" % tuple((mo - mt) / se))
 
 
+def doubling(mi, np, scene, a):
+    stem = a.out[:-4] if a.out.endswith(".pfm") else a.out
+    n = 1
+    while n <= a.spp and not os.path.exists(a.out + ".stop"):
+        start = time.time()
+        img = np.array(mi.render(scene, spp=n, seed=a.seed), dtype=np.float64)[:, :, :3]
+        secs = time.time() - start
+        name = f"{stem}-{n}spp.pfm"
+        write_pfm(name, img)
+        print(f"pass {n} {secs:.6f} {name}", flush=True)
+        if secs > a.doubling:
+            break
+        n *= 2
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("scene", nargs="?", help="JSON written by `pathtrace --export`")
@@ -240,6 +259,8 @@ def main():
     ap.add_argument("--compare", help="a zraka PFM of the same scene: print RMSE and channel means")
     ap.add_argument("--crop", type=int, nargs=4, metavar=("X0", "Y0", "X1", "Y1"),
                     help="compare only pixels x0 <= x < x1, y0 <= y < y1 (rows from the top)")
+    ap.add_argument("--doubling", type=float, metavar="SECONDS",
+                    help="render 1, 2, 4, ... spp up to --spp, one PFM each, until a render takes longer")
     ap.add_argument("--diff", nargs=2, metavar=("A.pfm", "B.pfm"),
                     help="render nothing: compare two PFM files (e.g. two zraka renders, for their noise)")
     a = ap.parse_args()
@@ -263,6 +284,9 @@ def main():
         except ValueError as e:
             sys.exit(f"error: {e}")
         scene = mi.load_dict(d)
+        if a.doubling is not None:
+            doubling(mi, np, scene, a)
+            return
         start = time.time()
         img = np.array(mi.render(scene, spp=a.spp, seed=a.seed), dtype=np.float64)[:, :, :3]
         secs = time.time() - start

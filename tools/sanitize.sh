@@ -24,5 +24,5 @@ cd build-sanitize
 gl='^chapter\.(3\.2-|4\.3-realtime)'
 # hostile.inputs runs its programs under an address-space limit, which ASan's shadow memory
 # (terabytes of reserved addresses) cannot live under: it runs in the normal build only.
-ctest --output-on-failure -j "$(nproc)" -LE '^(book|install|course|hostile)$' -E "$gl" "$@"
+ctest --output-on-failure -j "$(nproc)" -LE '^(book|install|course|hostile|bench)$' -E "$gl" "$@"
 ASAN_OPTIONS=$ASAN_OPTIONS:detect_leaks=0 ctest --output-on-failure -j "$(nproc)" -R "$gl" "$@"

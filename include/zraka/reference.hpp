@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace zraka {
@@ -55,6 +56,7 @@ inline std::string scene_file_hash(const std::string& arg) {
 
 struct mis_reference {
   image img;                 // (A + B) / 2
+  image half[2];             // A and B, for the noise of another error measure (bench/time_to_error)
   double mse_noise = 0;      // its own MSE, |A - B|^2 / 4
   double relmse_noise = 0;   // its own relMSE, likewise
   bool cached = false;       // both halves were read back
@@ -108,6 +110,7 @@ inline mis_reference make_mis_reference(const scene& sc, int spp, std::uint64_t 
   const double d = rmse(half[0], half[1]);
   ref.mse_noise = d * d / 4;
   ref.relmse_noise = relmse(half[0], half[1]) / 4;
+  ref.half[0] = std::move(half[0]), ref.half[1] = std::move(half[1]);
   ref.files = file_of("-{a,b}");
   return ref;
 }

@@ -1,0 +1,273 @@
+// Time to an error (issue 17, book 4.2): how many seconds each integrator and sampler needs to
+// bring one scene to a given RMSE, and, when Mitsuba 3 is installed, how many Mitsuba's
+// `scalar_rgb` needs on the same scene in the same run. Not a test: it takes minutes.
+//
+// The scene is RTIOW book 3's Cornell box with a glass sphere (scenes/rtiow-cornell.yaml). The
+// error is measured where RTIOW's own figures live, in its output space: a square root (gamma 2)
+// and a clamp to [0, 1], over every channel of every pixel, against a long `mis` reference that
+// is made once, in two halves, and cached under build/out/; the reference's own noise (from its
+// halves, in the same space) is taken out of every squared error.
+//
+// zraka's path tracers render in passes that double the samples (render_progressive), so the
+// time of a row is the time to render that many samples; BDPT renders each row afresh. Mitsuba
+// renders 1, 2, 4, ... spp, each a render of its own (tools/mitsuba_reference.py --doubling),
+// after zraka is done, so the two never share the cores. The time to the target is interpolated
+// log-log between the rows that bracket it (convergence_log::seconds_to).
+//   build/bin/time_to_error [--scene S] [--target RMSE] [--max-seconds S] [--ref-spp N]
+//                           [--integrators mis,nee,bdpt] [--mitsuba PYTHON|none] [--threads T]
+#include <zraka/bdpt.hpp>
+#include <zraka/cli.hpp>
+#include <zraka/convergence.hpp>
+#include <zraka/error.hpp>
+#include <zraka/image_error.hpp>
+#include <zraka/image_io.hpp>
+#include <zraka/mitsuba_export.hpp>
+#include <zraka/path.hpp>
+#include <zraka/pixel_sampling.hpp>
+#include <zraka/program_options.hpp>
+#include <zraka/progressive.hpp>
+#include <zraka/reference.hpp>
+#include <zraka/resources.hpp>
+#include <zraka/scene_argument.hpp>
+#include <zraka/stopwatch.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <signal.h>
+#include <sys/types.h>
+
+using namespace zraka;
+
+namespace {
+
+// RTIOW's output space: gamma 2, clamped to [0, 1] (its PPM holds 256 x this, below 256).
+image output_space(const image& x) {
+  image y(x.width, x.height);
+  for (std::size_t i = 0; i < x.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) y.pixels[i][c] = std::clamp(std::sqrt(std::max(x.pixels[i][c], 0.0f)), 0.0f, 1.0f);
+  return y;
+}
+
+// The error of an image in that space, the reference's own noise taken out.
+struct output_error {
+  image ref;
+  double noise_mse = 0;
+  explicit output_error(const mis_reference& r) : ref(output_space(r.img)) {
+    const double d = rmse(output_space(r.half[0]), output_space(r.half[1]));
+    noise_mse = d * d / 4;
+  }
+  double operator()(const image& x) const {
+    const double e = rmse(output_space(x), ref);
+    return std::sqrt(std::max(0.0, e * e - noise_mse));
+  }
+};
+
+std::vector<std::string> split_list(const std::string& s, const char* what) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  if (out.empty()) throw error(std::string(what) + " names nothing");
+  return out;
+}
+
+struct result_t {
+  std::string method;
+  convergence_log log;
+};
+
+void print_row(const result_t& r, double target) {
+  const convergence_row& last = r.log.rows().back();
+  const auto t = r.log.seconds_to(target);
+  char secs[32];
+  if (t) std::snprintf(secs, sizeof secs, "%.2f", *t);
+  else std::snprintf(secs, sizeof secs, "> %.1f", last.seconds);
+  std::printf("%-22s %10s %8llu %10.5f\n", r.method.c_str(), secs, static_cast<unsigned long long>(last.n), last.values[0]);
+  std::fflush(stdout);
+}
+
+// Mitsuba 3 scalar_rgb on the scene exported as JSON: reads the images its script writes as they
+// come, measures them here, and ends the script once the target is reached.
+std::optional<result_t> run_mitsuba(const std::string& python, const scene& sc, int depth, const std::string& stem,
+                                    const output_error& err, double target, double max_seconds) {
+  const std::string json = output_file("tte-" + stem + "-mitsuba.json").string();
+  const std::string out = output_file("tte-" + stem + "-mitsuba.pfm").string();
+  write_file_atomically(json, mitsuba_scene_json(sc, sc.settings.width, sc.settings.height, depth));
+  std::error_code ec;
+  std::filesystem::remove(out + ".stop", ec);
+  const std::string script = resource_path("tools/mitsuba_reference.py").string();
+  // `exec` makes the shell's pid the script's, which `echo $$` printed first.
+  const std::string cmd = "echo $$; exec '" + python + "' '" + script + "' '" + json + "' -o '" + out +
+                          "' --spp 65536 --doubling " + std::to_string(max_seconds);
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) throw error("cannot start " + python);
+  result_t r{"mitsuba scalar_rgb", convergence_log("mitsuba on " + stem, {"rmse"}, "rmse", "spp")};
+  long pid = 0;
+  char line[4096];
+  bool stopped = false;
+  while (std::fgets(line, sizeof line, pipe)) {
+    if (pid == 0) {
+      pid = std::strtol(line, nullptr, 10);
+      continue;
+    }
+    unsigned long long n = 0;
+    double secs = 0;
+    char file[4000];
+    if (std::sscanf(line, "pass %llu %lf %3999s", &n, &secs, file) != 3) {
+      std::fputs(line, stdout);  // Mitsuba's own messages
+      continue;
+    }
+    const image img = read_pfm(file);
+    check_same_size(err.ref, img);
+    r.log.add(n, secs, {err(img)});
+    std::filesystem::remove(file, ec);
+    if (!stopped && (r.log.rows().back().values[0] <= target || secs > max_seconds)) {
+      write_file_atomically(out + ".stop", "");
+      if (pid > 0) ::kill(pid_t(pid), SIGTERM);  // the render under way is not needed
+      stopped = true;
+    }
+  }
+  pclose(pipe);
+  std::filesystem::remove(out + ".stop", ec);
+  if (r.log.rows().empty()) {
+    std::printf("%-22s failed: the script rendered nothing (%s)\n", r.method.c_str(), cmd.c_str());
+    return std::nullopt;
+  }
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  program_options cli{"Time to an RMSE for each integrator and sampler, and for Mitsuba 3 scalar_rgb (issue 17)",
+                      take::scene | take::size | take::depth | take::seed | take::threads};
+  cli.scene = "scenes/rtiow-cornell.yaml";
+  cli.scene_settings = true;
+  double target = 0.014, max_seconds = 60;
+  int ref_spp = 8192;
+  std::string integrators = "mis,nee,bdpt", samplers = "independent";
+  std::string mitsuba = "build/mitsuba-venv/bin/python";
+  cli.app.add_option("--target", target, "the RMSE to reach, in RTIOW's output space (gamma 2, clamped to [0, 1])");
+  cli.app.add_option("--max-seconds", max_seconds, "a method stops after a pass that ends later than this");
+  cli.app.add_option("--ref-spp", ref_spp, "samples per pixel of the mis reference (made once, cached in build/out/)");
+  cli.app.add_option("--integrators", integrators, "comma-separated: naive, nee, mis (path tracing) and bdpt");
+  cli.app.add_option("--samplers", samplers, "comma-separated samplers for the path tracers: independent");
+  cli.app.add_option("--mitsuba", mitsuba,
+                     "the Python that has the mitsuba package (relative: to the checkout); none: leave Mitsuba out");
+  if (const auto done = cli.parse(argc, argv)) return *done;
+
+  return guarded([&] {
+    if (!(target > 0)) throw error("--target must be positive");
+    if (!(max_seconds > 0)) throw error("--max-seconds must be positive");
+    const std::vector<std::string> methods = split_list(integrators, "--integrators");
+    const std::vector<std::string> sampler_names = split_list(samplers, "--samplers");
+    for (const std::string& s : sampler_names)
+      if (s != "independent") throw error("unknown sampler '" + s + "' (independent)");
+    scene sc = load_scene_argument(cli.scene).sc;
+    cli.apply_to(sc.settings);
+    sc.build_acceleration();
+    const int W = sc.settings.width, H = sc.settings.height;
+    const std::string stem = std::filesystem::path(cli.scene).stem().string();
+    const stopwatch total;
+    render_options ro = cli.render();
+    ro.progress = false;
+    path_options po;
+    po.max_depth = sc.settings.max_depth;
+
+    std::uint64_t bad = 0;
+    const std::string tag = reference_tag(cli.scene, W, H, po.max_depth, ref_spp);
+    const mis_reference ref = make_mis_reference(
+        sc, ref_spp, cli.seed, po, ro, [&](const std::string& h) { return output_file("tte" + tag + h + ".pfm").string(); },
+        bad);
+    const output_error err(ref);
+    std::printf("%s, %dx%d, at most %d bounces, %d threads: seconds to RMSE %.4f in RTIOW's output space\n"
+                "reference: mis, %d spp in two halves (%s), its own RMSE there %.5f, taken out\n\n%-22s %10s %8s %10s\n",
+                cli.scene.c_str(), W, H, po.max_depth, resolve_threads(cli.threads), target, ref_spp, ref.files.c_str(),
+                std::sqrt(err.noise_mse), "method", "seconds", "spp", "rmse");
+    std::fflush(stdout);
+
+    std::vector<result_t> results;
+    const auto cam = sc.prepared_camera();
+    for (const std::string& m : methods) {
+      if (m == "bdpt") {
+        result_t r{"bdpt", convergence_log("bdpt on " + stem, {"rmse"}, "rmse", "spp")};
+        bdpt_options bo;
+        bo.max_depth = po.max_depth, bo.threads = cli.threads;
+        for (int n = 1; n <= 65536; n *= 2) {  // each row a render of its own
+          const stopwatch clock;
+          const image img = render_bdpt(sc, n, cli.seed, bo).img;
+          r.log.add(std::uint64_t(n), clock.seconds(), {err(img)});
+          if (r.log.rows().back().values[0] <= target || r.log.rows().back().seconds > max_seconds) break;
+        }
+        print_row(r, target);
+        results.push_back(std::move(r));
+        continue;
+      }
+      path_options p = po;
+      p.method = parse_integrator(m);
+      const path_tracer tracer(sc, p);
+      for (const std::string& s : sampler_names) {
+        result_t r{m + " " + s, convergence_log(m + " " + s + " on " + stem, {"rmse"}, "rmse", "spp")};
+        progressive_options prog;
+        prog.max_spp = 65536, prog.seed = cli.seed, prog.render = ro;
+        render_progressive(W, H, prog, [&](sample_context& c) {
+          const vec2 o = pixel_sample(pixel_pattern::uniform, c.sample, c.spp, c.random);
+          return tracer(cam.generate((c.x + o.x) / W, (c.y + o.y) / H), c.random, c.rays);
+        }, [&](const image& mean, const progressive_totals& t) {
+          r.log.add(std::uint64_t(t.spp), t.seconds, {err(mean)});
+          return r.log.rows().back().values[0] > target && t.seconds <= max_seconds;
+        });
+        print_row(r, target);
+        results.push_back(std::move(r));
+      }
+    }
+
+    std::optional<result_t> mi;
+    if (mitsuba != "none") {
+      std::filesystem::path py(mitsuba);
+      if (py.is_relative()) py = resource_root() / py;
+      std::error_code ec;
+      if (std::filesystem::exists(py, ec)) {
+        mi = run_mitsuba(py.string(), sc, po.max_depth, stem, err, target, max_seconds);
+        if (mi) print_row(*mi, target);
+      } else {
+        std::printf("%-22s not run: %s not found (bash tools/mitsuba-setup.sh)\n", "mitsuba scalar_rgb", py.c_str());
+      }
+    }
+    for (const result_t& r : results) {
+      std::string name = r.method;
+      std::replace(name.begin(), name.end(), ' ', '-');
+      r.log.write_csv(output_file("tte-" + stem + "-" + name + ".csv"));
+    }
+    if (mi) mi->log.write_csv(output_file("tte-" + stem + "-mitsuba.csv"));
+
+    // The summary: the fastest of zraka's methods, against Mitsuba when it ran and got there.
+    const result_t* best = nullptr;
+    double best_t = 0;
+    for (const result_t& r : results)
+      if (const auto t = r.log.seconds_to(target); t && (!best || *t < best_t)) best = &r, best_t = *t;
+    std::printf("\nsummary: %.1f s in all", total.seconds());
+    if (best) std::printf("; fastest: %s, %.2f s", best->method.c_str(), best_t);
+    else std::printf("; no zraka method reached %.4f", target);
+    if (mi) {
+      if (const auto t = mi->log.seconds_to(target)) {
+        std::printf("; Mitsuba scalar_rgb %.2f s", *t);
+        if (best) std::printf(" (%.2fx)", *t / best_t);
+      } else {
+        std::printf("; Mitsuba did not reach it");
+      }
+    }
+    std::printf("; %llu NaN/inf samples in the reference\n", static_cast<unsigned long long>(bad));
+    return 0;
+  });
+}
