@@ -13,6 +13,7 @@
 #include <zraka/error.hpp>
 #include <zraka/metropolis.hpp>
 #include <zraka/path.hpp>
+#include <zraka/progressive.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/reference.hpp>
 #include <zraka/scene_argument.hpp>
@@ -125,8 +126,8 @@ int main(int argc, char** argv) {
         }
         log.write_csv(output_file("compare-" + std::filesystem::path(name).stem().string() + "-" + m.name + ".csv"));
         const convergence_row& last = log.rows().back();
-        if (const auto t = log.seconds_to(target))
-          std::printf("%-8s %12.3f %8llu %10.5f\n", m.name.c_str(), *t, static_cast<unsigned long long>(last.n),
+        if (const double t = seconds_to_reach(log, target); !std::isnan(t))
+          std::printf("%-8s %12.3f %8llu %10.5f\n", m.name.c_str(), t, static_cast<unsigned long long>(last.n),
                       last.values[0]);
         else
           std::printf("%-8s %12s %8llu %10.5f\n", m.name.c_str(), (">" + std::to_string(last.seconds).substr(0, 6)).c_str(),

@@ -12,9 +12,11 @@
 // time of a row is the time to render that many samples; BDPT renders each row afresh. Mitsuba
 // renders 1, 2, 4, ... spp, each a render of its own (tools/mitsuba_reference.py --doubling),
 // after zraka is done, so the two never share the cores. The time to the target is interpolated
-// log-log between the rows that bracket it (convergence_log::seconds_to).
+// log-log between the rows that bracket it (seconds_to_reach, progressive.hpp).
+// The path tracers run in double and in float (scene_precision.hpp), each a row.
 //   build/bin/time_to_error [--scene S] [--target RMSE] [--max-seconds S] [--ref-spp N]
-//                           [--integrators mis,nee,bdpt] [--mitsuba PYTHON|none] [--threads T]
+//                           [--integrators mis,nee,bdpt] [--precisions double,float]
+//                           [--mitsuba PYTHON|none] [--threads T]
 #include <zraka/bdpt.hpp>
 #include <zraka/cli.hpp>
 #include <zraka/convergence.hpp>
@@ -29,6 +31,7 @@
 #include <zraka/reference.hpp>
 #include <zraka/resources.hpp>
 #include <zraka/scene_argument.hpp>
+#include <zraka/scene_precision.hpp>
 #include <zraka/stopwatch.hpp>
 
 #include <algorithm>
@@ -88,11 +91,11 @@ struct result_t {
 
 void print_row(const result_t& r, double target) {
   const convergence_row& last = r.log.rows().back();
-  const auto t = r.log.seconds_to(target);
+  const double t = seconds_to_reach(r.log, target);
   char secs[32];
-  if (t) std::snprintf(secs, sizeof secs, "%.2f", *t);
+  if (!std::isnan(t)) std::snprintf(secs, sizeof secs, "%.2f", t);
   else std::snprintf(secs, sizeof secs, "> %.1f", last.seconds);
-  std::printf("%-22s %10s %8llu %10.5f\n", r.method.c_str(), secs, static_cast<unsigned long long>(last.n), last.values[0]);
+  std::printf("%-26s %10s %8llu %10.5f\n", r.method.c_str(), secs, static_cast<unsigned long long>(last.n), last.values[0]);
   std::fflush(stdout);
 }
 
@@ -140,7 +143,7 @@ std::optional<result_t> run_mitsuba(const std::string& python, const scene& sc, 
   pclose(pipe);
   std::filesystem::remove(out + ".stop", ec);
   if (r.log.rows().empty()) {
-    std::printf("%-22s failed: the script rendered nothing (%s)\n", r.method.c_str(), cmd.c_str());
+    std::printf("%-26s failed: the script rendered nothing (%s)\n", r.method.c_str(), cmd.c_str());
     return std::nullopt;
   }
   return r;
@@ -155,13 +158,14 @@ int main(int argc, char** argv) {
   cli.scene_settings = true;
   double target = 0.014, max_seconds = 60;
   int ref_spp = 8192;
-  std::string integrators = "mis,nee,bdpt", samplers = "independent";
+  std::string integrators = "mis,nee,bdpt", samplers = "independent", precisions = "double,float";
   std::string mitsuba = "build/mitsuba-venv/bin/python";
   cli.app.add_option("--target", target, "the RMSE to reach, in RTIOW's output space (gamma 2, clamped to [0, 1])");
   cli.app.add_option("--max-seconds", max_seconds, "a method stops after a pass that ends later than this");
   cli.app.add_option("--ref-spp", ref_spp, "samples per pixel of the mis reference (made once, cached in build/out/)");
   cli.app.add_option("--integrators", integrators, "comma-separated: naive, nee, mis (path tracing) and bdpt");
   cli.app.add_option("--samplers", samplers, "comma-separated samplers for the path tracers: independent");
+  cli.app.add_option("--precisions", precisions, "comma-separated: double, float (the path tracers' arithmetic)");
   cli.app.add_option("--mitsuba", mitsuba,
                      "the Python that has the mitsuba package (relative: to the checkout); none: leave Mitsuba out");
   if (const auto done = cli.parse(argc, argv)) return *done;
@@ -173,9 +177,13 @@ int main(int argc, char** argv) {
     const std::vector<std::string> sampler_names = split_list(samplers, "--samplers");
     for (const std::string& s : sampler_names)
       if (s != "independent") throw error("unknown sampler '" + s + "' (independent)");
+    const std::vector<std::string> precision_names = split_list(precisions, "--precisions");
+    for (const std::string& s : precision_names)
+      if (s != "double" && s != "float") throw error("unknown precision '" + s + "' (double, float)");
     scene sc = load_scene_argument(cli.scene).sc;
     cli.apply_to(sc.settings);
     sc.build_acceleration();
+    const scene_t<float> sc_float = scene_in<float>(sc);  // the same scene, coordinates in float
     const int W = sc.settings.width, H = sc.settings.height;
     const std::string stem = std::filesystem::path(cli.scene).stem().string();
     const stopwatch total;
@@ -191,13 +199,12 @@ int main(int argc, char** argv) {
         bad);
     const output_error err(ref);
     std::printf("%s, %dx%d, at most %d bounces, %d threads: seconds to RMSE %.4f in RTIOW's output space\n"
-                "reference: mis, %d spp in two halves (%s), its own RMSE there %.5f, taken out\n\n%-22s %10s %8s %10s\n",
+                "reference: mis, %d spp in two halves (%s), its own RMSE there %.5f, taken out\n\n%-26s %10s %8s %10s\n",
                 cli.scene.c_str(), W, H, po.max_depth, resolve_threads(cli.threads), target, ref_spp, ref.files.c_str(),
                 std::sqrt(err.noise_mse), "method", "seconds", "spp", "rmse");
     std::fflush(stdout);
 
     std::vector<result_t> results;
-    const auto cam = sc.prepared_camera();
     for (const std::string& m : methods) {
       if (m == "bdpt") {
         result_t r{"bdpt", convergence_log("bdpt on " + stem, {"rmse"}, "rmse", "spp")};
@@ -215,21 +222,28 @@ int main(int argc, char** argv) {
       }
       path_options p = po;
       p.method = parse_integrator(m);
-      const path_tracer tracer(sc, p);
-      for (const std::string& s : sampler_names) {
-        result_t r{m + " " + s, convergence_log(m + " " + s + " on " + stem, {"rmse"}, "rmse", "spp")};
+      // One progressive run of path tracer `tracer` with sampler s; T is its precision.
+      auto run = [&]<class T>(const path_tracer_t<T>& tracer, const typename camera_t<T>::prepared& cam,
+                              const std::string& s) {
+        const std::string method = m + " " + s + " " + (sizeof(T) == 4 ? "float" : "double");
+        result_t r{method, convergence_log(method + " on " + stem, {"rmse"}, "rmse", "spp")};
         progressive_options prog;
         prog.max_spp = 65536, prog.seed = cli.seed, prog.render = ro;
         render_progressive(W, H, prog, [&](sample_context& c) {
           const vec2 o = pixel_sample(pixel_pattern::uniform, c.sample, c.spp, c.random);
-          return tracer(cam.generate((c.x + o.x) / W, (c.y + o.y) / H), c.random, c.rays);
+          return tracer(cam.generate(T((c.x + o.x) / W), T((c.y + o.y) / H)), c.random, c.rays);
         }, [&](const image& mean, const progressive_totals& t) {
           r.log.add(std::uint64_t(t.spp), t.seconds, {err(mean)});
           return r.log.rows().back().values[0] > target && t.seconds <= max_seconds;
         });
         print_row(r, target);
         results.push_back(std::move(r));
-      }
+      };
+      for (const std::string& precision : precision_names)
+        for (const std::string& s : sampler_names) {
+          if (precision == "double") run(path_tracer_t<double>(sc, p), sc.prepared_camera(), s);
+          else run(path_tracer_t<float>(sc_float, p), sc_float.prepared_camera(), s);
+        }
     }
 
     std::optional<result_t> mi;
@@ -241,7 +255,7 @@ int main(int argc, char** argv) {
         mi = run_mitsuba(py.string(), sc, po.max_depth, stem, err, target, max_seconds);
         if (mi) print_row(*mi, target);
       } else {
-        std::printf("%-22s not run: %s not found (bash tools/mitsuba-setup.sh)\n", "mitsuba scalar_rgb", py.c_str());
+        std::printf("%-26s not run: %s not found (bash tools/mitsuba-setup.sh)\n", "mitsuba scalar_rgb", py.c_str());
       }
     }
     for (const result_t& r : results) {
@@ -255,14 +269,14 @@ int main(int argc, char** argv) {
     const result_t* best = nullptr;
     double best_t = 0;
     for (const result_t& r : results)
-      if (const auto t = r.log.seconds_to(target); t && (!best || *t < best_t)) best = &r, best_t = *t;
+      if (const double t = seconds_to_reach(r.log, target); !std::isnan(t) && (!best || t < best_t)) best = &r, best_t = t;
     std::printf("\nsummary: %.1f s in all", total.seconds());
     if (best) std::printf("; fastest: %s, %.2f s", best->method.c_str(), best_t);
     else std::printf("; no zraka method reached %.4f", target);
     if (mi) {
-      if (const auto t = mi->log.seconds_to(target)) {
-        std::printf("; Mitsuba scalar_rgb %.2f s", *t);
-        if (best) std::printf(" (%.2fx)", *t / best_t);
+      if (const double t = seconds_to_reach(mi->log, target); !std::isnan(t)) {
+        std::printf("; Mitsuba scalar_rgb %.2f s", t);
+        if (best) std::printf(" (%.2fx)", t / best_t);
       } else {
         std::printf("; Mitsuba did not reach it");
       }

@@ -146,19 +146,3 @@ TEST_CASE("a real Monte Carlo run: error and standard error fall as 1/sqrt(N)") 
   CHECK(log.fit("std_error").slope == doctest::Approx(-0.5).epsilon(0.01));
   CHECK(std::abs(log.fit().slope + 0.5) < 0.15);
 }
-
-TEST_CASE("seconds_to: the time an error is first reached, interpolated in log-log") {
-  convergence_log log("r", {"rmse", "relmse"}, "rmse", "spp");
-  CHECK_FALSE(log.seconds_to(0.1).has_value());  // no rows
-  // rmse = 1/sqrt(n), seconds = n / 100: a power law, so the interpolation is exact.
-  for (std::uint64_t n = 1; n <= 64; n *= 4) log.add(n, double(n) / 100, {1 / std::sqrt(double(n)), 0.0});
-  CHECK(*log.seconds_to(2.0) == doctest::Approx(0.01));               // the first row already
-  CHECK(*log.seconds_to(0.25) == doctest::Approx(0.16));              // a row exactly
-  CHECK(*log.seconds_to(1 / std::sqrt(8.0)) == doctest::Approx(0.08));  // between rows 4 and 16
-  CHECK_FALSE(log.seconds_to(0.1).has_value());                       // 1/8 is the last row's
-  log.add(128, 1.28, {0.0, 0.0});                                     // an exact image: no logarithm
-  CHECK(*log.seconds_to(0.1) == doctest::Approx(1.28));
-  convergence_log nan_rows("r", {"rmse"}, "rmse", "spp");
-  nan_rows.add(1, 0.1, {std::nan("")});
-  CHECK_FALSE(nan_rows.seconds_to(1.0).has_value());                  // NaN never reaches a target
-}

@@ -8,6 +8,7 @@
 #include <zraka/path.hpp>
 #include <zraka/render.hpp>
 #include <zraka/scene_argument.hpp>
+#include <zraka/scene_precision.hpp>
 
 #include <doctest/doctest.h>
 
@@ -17,29 +18,6 @@
 using namespace zraka;
 
 namespace {
-
-// The scene in float: spheres, quads, planes, triangles and point lights (what the stiff scenes
-// hold); anything else is refused by name.
-scene_t<float> to_float(const scene& s) {
-  if (!s.meshes.empty() || !s.user_shapes.empty()) throw error("to_float: meshes and user shapes are not converted");
-  scene_t<float> f;
-  f.materials = s.materials;
-  for (const auto& o : s.spheres) f.spheres.push_back({sphere_t<float>{vec3f(o.shape.center), float(o.shape.radius)}, o.material});
-  for (const auto& o : s.quads)
-    f.quads.push_back({parallelogram_t<float>{vec3f(o.shape.corner), vec3f(o.shape.u), vec3f(o.shape.v)}, o.material});
-  for (const auto& o : s.planes) f.planes.push_back({plane_t<float>{vec3f(o.shape.point), vec3f(o.shape.normal)}, o.material});
-  for (const auto& o : s.triangles)
-    f.triangles.push_back({triangle_t<float>{vec3f(o.shape.a), vec3f(o.shape.b), vec3f(o.shape.c)}, o.material});
-  for (const auto& p : s.point_lights) f.point_lights.push_back({vec3f(p.position), p.intensity});
-  f.background = s.background;
-  f.camera.position = vec3f(s.camera.position);
-  f.camera.look_at = vec3f(s.camera.look_at);
-  f.camera.up = vec3f(s.camera.up);
-  f.camera.vfov_degrees = float(s.camera.vfov_degrees);
-  f.settings = s.settings;
-  f.build_acceleration();
-  return f;
-}
 
 template <class T> image render_mis(const scene_t<T>& sc, int spp, std::uint64_t seed, std::uint64_t& bad) {
   path_options po;
@@ -85,7 +63,7 @@ TEST_CASE("smallpt-walls: float and double give the same image") {
   scene sd = load_scene_argument("smallpt-walls").sc;
   sd.settings.width = 16, sd.settings.height = 12;
   sd.build_acceleration();
-  const scene_t<float> sf = to_float(sd);
+  const scene_t<float> sf = scene_in<float>(sd);
   constexpr int R = 2;  // 2 x 2 regions, 3 channels
   std::vector<estimator_t<double>> ed(R * R * 3), ef(R * R * 3);
   std::uint64_t bad_d = 0, bad_f = 0;

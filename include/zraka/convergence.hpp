@@ -24,7 +24,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -86,22 +85,6 @@ class convergence_log {
 
   // Slope of ln(column) against ln(n); the fit column unless another is named.
   ZRAKA_COMPILED_FN loglog_fit fit(std::string_view column = {}) const;
-
-  // When the fit column first reaches `target` (at most): the seconds interpolated in log-log
-  // between the two rows that bracket it; empty if no row reaches it. Rows are in order of n.
-  std::optional<double> seconds_to(double target) const {
-    const std::size_t c = column_index(fit_column_);
-    for (std::size_t i = 0; i < rows_.size(); ++i) {
-      const convergence_row& b = rows_[i];
-      if (!(b.values[c] <= target)) continue;
-      if (i == 0) return b.seconds;
-      const convergence_row& a = rows_[i - 1];
-      if (!(b.values[c] > 0 && a.seconds > 0 && b.seconds > 0)) return b.seconds;
-      const double f = std::log(target / a.values[c]) / std::log(b.values[c] / a.values[c]);
-      return std::exp(std::log(a.seconds) + f * (std::log(b.seconds) - std::log(a.seconds)));
-    }
-    return std::nullopt;
-  }
 
   // The aligned table: a title line, a header and one line per row. NaN prints as n/a.
   ZRAKA_COMPILED_FN std::string table() const;
