@@ -10,7 +10,8 @@
 //   sensor perspective (fov, fov_axis, near/far clip left out) with to_world, film hdrfilm
 //   (width, height, a box rfilter), sampler independent (sample_count, seed), integrator path
 //   (max_depth: Mitsuba counts path segments, zraka bounces, so zraka's max_depth is one less);
-//   shapes sphere, rectangle, cube, obj and ply (mesh_file.hpp; face_normals: zraka's path tracers shade meshes flat);
+//   shapes sphere, rectangle, cube, obj and ply (mesh_file.hpp; face_normals: zraka's path tracers shade meshes flat),
+//   and disk when the program registered one (below);
 //   a bitmap texture as a diffuse reflectance, on rectangles (whose uv were checked); BSDFs twosided around diffuse, conductor (material
 //   'none') or roughconductor, and dielectric, roughdielectric (both GGX); emitters area (on a
 //   shape whose BSDF is black), point, constant, envmap (rotated about +y only);
@@ -20,8 +21,7 @@
 // Refused because zraka's model differs: a bare diffuse or conductor (Mitsuba's are black from
 // behind, zraka's reflect on both sides: wrap them in twosided), Beckmann roughness, the
 // checkerboard (Mitsuba's is in uv space, zraka's in world space), a bitmap on other shapes than
-// rectangles or anywhere but a diffuse reflectance, disks (no disk shape), Mitsuba's gaussian
-// pixel filter
+// rectangles or anywhere but a diffuse reflectance, Mitsuba's gaussian pixel filter
 // (zraka's is a box), a mirroring or shearing to_world where zraka's shape cannot follow it.
 // Limits as for YAML scenes (limits.hpp): file_bytes, and yaml_nodes for the XML's elements.
 // Needs pugixml (libpugixml-dev) and yaml-cpp; compiled once into zraka::compiled when zraka is
@@ -74,30 +74,36 @@ namespace zraka {
 
 // The zraka YAML of a Mitsuba XML text; `name` names the file in errors, `dir` is where the
 // files it names (obj, envmap) are looked for, as Mitsuba does: next to the XML file.
+// `registry`: the program's own types (scene_registry.hpp). zraka has no disk of its own (it is
+// book 2.3's example of a shape from outside): a Mitsuba disk is read as `type: disk` with center,
+// normal and radius when the program registered a disk shape that takes those keys.
 ZRAKA_MITSUBA_XML_FN std::string mitsuba_xml_to_yaml(const std::string& text, const std::string& name,
-                                                     const std::filesystem::path& dir);
+                                                     const std::filesystem::path& dir,
+                                                     const scene_registry& registry = {});
 
 inline bool is_mitsuba_xml_path(const std::filesystem::path& p) { return p.extension() == ".xml"; }
 
 namespace detail {
 // load_mitsuba_xml with the resource root given (for load_scene_argument, compiled.hpp).
-inline loaded_scene load_mitsuba_xml_in(const std::filesystem::path& path, const std::filesystem::path& root) {
+inline loaded_scene load_mitsuba_xml_in(const std::filesystem::path& path, const std::filesystem::path& root,
+                                       const scene_registry& registry = {}) {
   const std::filesystem::path p = resource_path_in(path.string(), root);
-  const std::string yaml = mitsuba_xml_to_yaml(read_input_file(p), path.string(), p.parent_path());
+  const std::string yaml = mitsuba_xml_to_yaml(read_input_file(p), path.string(), p.parent_path(), registry);
   // What the XML reader checked does not fail here; what it leaves to the YAML reader (a
   // malformed OBJ or sky file) is named by its place in the converted scene.
-  return parse_scene_in(yaml, path.string() + " (as zraka YAML)", p.parent_path(), {}, root);
+  return parse_scene_in(yaml, path.string() + " (as zraka YAML)", p.parent_path(), registry, root);
 }
 }  // namespace detail
 
-// Reads a Mitsuba XML file (a path as given, or relative to the resource root).
-inline loaded_scene load_mitsuba_xml(const std::filesystem::path& path) {
-  return detail::load_mitsuba_xml_in(path, resource_root());
+// Reads a Mitsuba XML file (a path as given, or relative to the resource root); `registry` as for
+// mitsuba_xml_to_yaml.
+inline loaded_scene load_mitsuba_xml(const std::filesystem::path& path, const scene_registry& registry = {}) {
+  return detail::load_mitsuba_xml_in(path, resource_root(), registry);
 }
 
 #if ZRAKA_MITSUBA_XML_DEFINITIONS && !defined(ZRAKA_MITSUBA_XML_READER)
 ZRAKA_MITSUBA_XML_FN std::string mitsuba_xml_to_yaml(const std::string&, const std::string& name,
-                                                     const std::filesystem::path&) {
+                                                     const std::filesystem::path&, const scene_registry&) {
   throw error(name + ": reading Mitsuba XML needs pugixml (libpugixml-dev), which this build of zraka lacks");
 }
 #elif ZRAKA_MITSUBA_XML_DEFINITIONS
@@ -105,7 +111,12 @@ namespace detail {
 
 class mitsuba_reader {
  public:
-  mitsuba_reader(std::string name, std::filesystem::path dir) : name_(std::move(name)), dir_(std::move(dir)) {}
+  mitsuba_reader(std::string name, std::filesystem::path dir, const scene_registry& registry)
+      : name_(std::move(name)), dir_(std::move(dir)) {
+    if (const auto* d = registry.shape("disk"))
+      disk_ = std::ranges::all_of(std::array{"center", "normal", "radius"},
+                                  [&](const char* k) { return std::ranges::find(d->keys, k) != d->keys.end(); });
+  }
 
   std::string read(const std::string& text) {
     for (std::size_t i = 0; i < text.size(); ++i)
@@ -172,6 +183,7 @@ class mitsuba_reader {
 
  private:
   std::string name_;
+  bool disk_ = false;  // the program registered a disk (center, normal, radius)
   std::filesystem::path dir_;
   std::vector<std::size_t> newlines_;
   std::map<std::string, std::string> defaults_;
@@ -812,7 +824,10 @@ class mitsuba_reader {
     else if (type == "rectangle" || type == "cube") p = parameters(n, {"to_world"});
     else if (type == "obj") p = parameters(n, {"filename", "to_world", "face_normals", "flip_tex_coords"});
     else if (type == "ply") p = parameters(n, {"filename", "to_world", "face_normals"});
-    else if (type == "disk") fail(n, "type", "zraka has no disk shape yet");
+    else if (type == "disk" && disk_) p = parameters(n, {"to_world"});
+    else if (type == "disk")
+      fail(n, "type", "zraka has no disk of its own: register a disk shape taking center, normal and radius "
+                      "(book 2.3, 'Extending zraka') and read the file with that registry");
     else fail(n, "type", "unknown plugin '" + type + "' (zraka reads the shapes sphere, rectangle, cube, obj, ply)");
 
     const affine a = transform_param(p, "to_world");
@@ -821,11 +836,28 @@ class mitsuba_reader {
       fail(tw, "a to_world that mirrors or flattens the shape is outside the subset (Mitsuba turns faces, zraka does not)");
     std::vector<YAML::Node> made;  // the geometry first, so its errors come in the file's order
     auto add = [&](YAML::Node o) { made.push_back(o); };
-    if (type == "sphere") {
+    // A sphere's or a disk's to_world: a rotation, a translation and a uniform scale s.
+    auto uniform_scale = [&] {
       const mat3& l = a.linear;
       const double s = glm::length(l[0]);
       if (!orthogonal_columns(l) || std::abs(glm::length(l[1]) - s) > 1e-9 * s || std::abs(glm::length(l[2]) - s) > 1e-9 * s)
-        fail(tw, "a sphere's to_world may rotate, translate and scale uniformly only");
+        fail(tw, "a " + type + "'s to_world may rotate, translate and scale uniformly only");
+      return s;
+    };
+    if (type == "disk") {  // Mitsuba's: the unit disk at the origin in the xy plane, facing +z
+      const double s = uniform_scale();
+      const vec3 c = a.point(vec3(0));
+      const vec3 nn = a.linear[2] / s;
+      check_placed(tw, c);
+      check_placed(tw, vec3(s));
+      YAML::Node o;
+      o["type"] = "disk";
+      o["center"] = flow(c);
+      o["normal"] = flow(nn);
+      o["radius"] = num(s);
+      add(o);
+    } else if (type == "sphere") {
+      const double s = uniform_scale();
       const double r = float_param(p, "radius", 1.0);
       if (!(r > 0)) fail(param(p, "radius"), "value", "must be positive");
       const vec3 c = a.point(point_param(p, "center", vec3(0)));
@@ -1040,8 +1072,8 @@ class mitsuba_reader {
 }  // namespace detail
 
 ZRAKA_MITSUBA_XML_FN std::string mitsuba_xml_to_yaml(const std::string& text, const std::string& name,
-                                                     const std::filesystem::path& dir) {
-  return detail::mitsuba_reader(name, dir).read(text);
+                                                     const std::filesystem::path& dir, const scene_registry& registry) {
+  return detail::mitsuba_reader(name, dir, registry).read(text);
 }
 #endif
 

@@ -2,14 +2,16 @@
 // a glossy material (glossy.hpp, a custom BSDF), checks both with zraka's instructor checks,
 // registers them for scene files (register.hpp), renders scene.yaml with the path tracer that
 // `pathtrace` uses (zraka/path.hpp), and checks that the realtime packer refuses the scene by
-// naming the user shape. Usage: disk [out.png [scene.yaml]]. Exit code 0 only if every check
-// passes and the image is written.
+// naming the user shape. Usage: disk [out.png [scene.yaml | scene.xml]] (scene.xml: the Mitsuba 3
+// file of the same disk, read through the registry). Exit code 0 only if every check passes and
+// the image is written.
 #include "register.hpp"
 
 #include <zraka/chi_square.hpp>
 #include <zraka/error.hpp>
 #include <zraka/gpu_scene.hpp>
 #include <zraka/image_io.hpp>
+#include <zraka/mitsuba_xml.hpp>
 #include <zraka/path.hpp>
 #include <zraka/render.hpp>
 #include <zraka/sampling.hpp>
@@ -120,7 +122,9 @@ int main(int argc, char** argv) {
     // 5. The scene file names the project's types; the path tracer renders them.
     scene_registry reg;
     mycourse::register_types(reg);
-    const loaded_scene ls = load_scene_file(scene_path, reg);
+    // A Mitsuba 3 file too: its disks become the project's disk (mitsuba_xml.hpp asks the registry).
+    const loaded_scene ls =
+        is_mitsuba_xml_path(scene_path) ? load_mitsuba_xml(scene_path, reg) : load_scene_file(scene_path, reg);
     const scene& sc = ls.sc;
     path_options po;
     po.method = integrator::mis;
@@ -134,7 +138,7 @@ int main(int argc, char** argv) {
       const vec2 o = c.random.uniform2();
       return tracer(cam.generate((c.x + o.x) / W, (c.y + o.y) / H), c.random, c.rays);
     });
-    write_png(img, out);
+    write_image(img, out);  // the extension picks the format: .png, or .pfm to compare with Mitsuba
     std::printf("wrote %s (%dx%d, %d spp, %llu rays)\n", out.c_str(), W, H, sc.settings.spp,
                 static_cast<unsigned long long>(st.rays));
     const bool sampled = tracer.lights.size() == 1 && tracer.lights.hit_only().empty();
