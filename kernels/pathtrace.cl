@@ -10,6 +10,7 @@
 //   HAS_ROUGH_CONDUCTOR HAS_ROUGH_DIELECTRIC     microfacet.hpp's GGX materials
 //   HAS_TEXTURES    texture records (image or noise albedo, roughness maps), with
 //   HAS_IMAGE_TEXTURES (bilinear lookups by uv) and HAS_NOISE_TEXTURES (Perlin noise, marble)
+//   HAS_UV_CHECKER  a checker in surface coordinates (hits then carry (u, v), as for image textures)
 //   HAS_ENVIRONMENT the environment light (environment.hpp): seen by rays that leave, sampled
 //   HAS_SPHERE_LIGHTS HAS_QUAD_LIGHTS HAS_TRIANGLE_LIGHTS HAS_POINT_LIGHTS   which lights are sampled
 //   HAS_THIN_LENS   the camera has an aperture   WEAK_SEED   the thesis's per-pixel seed (C7)
@@ -59,7 +60,7 @@ typedef struct { float4 a, b, c; uint id; int material, light, p1; } triangle_t;
 typedef struct { float box[6][4]; uint child[4], count[4]; } node4_t;
 typedef struct {
   float4 albedo_a, albedo_b, radiance;  // phong: kd, ks
-  int kind, checker, two_sided, schlick;  // schlick: the conductor's F0 is in eta
+  int kind, checker, two_sided, schlick;  // checker: 1 world, 2 uv; schlick: the conductor's F0 is in eta
   float fuzz, ior, cell, shininess;
   float4 eta, k;                        // rough_conductor: complex index per channel (or F0)
   int albedo_texture, roughness_texture, p0, p1;  // index in textures, or -1
@@ -97,6 +98,10 @@ typedef struct { float4 origin, u, v, corner, horizontal, vertical; float lens_r
 #define TEX_CHECKER 1
 #define TEX_IMAGE 2
 #define TEX_NOISE 3
+#define TEX_CHECKER_UV 4
+#if defined(HAS_IMAGE_TEXTURES) || defined(HAS_UV_CHECKER)
+#define HAS_SURFACE_UV  // hits carry the shape's (u, v)
+#endif
 #define LIGHT_SPHERE 0
 #define LIGHT_QUAD 1
 #define LIGHT_TRIANGLES 2
@@ -122,7 +127,7 @@ typedef struct {
 #if defined(HAS_TEXTURES) || defined(HAS_ENVIRONMENT)
   global const float4* texels;
 #endif
-#ifdef HAS_IMAGE_TEXTURES
+#ifdef HAS_SURFACE_UV
   global const float4* tri_uvs;  // 2 per triangle, in the BVH's order; none: uv = barycentrics
   int has_tri_uvs;
 #endif
@@ -138,7 +143,7 @@ typedef struct {
   bool front_face;
   int material;
   int light;  // the light table's index of the object hit, or -1
-#ifdef HAS_IMAGE_TEXTURES
+#ifdef HAS_SURFACE_UV
   float2 uv;  // the shape's surface coordinates, as its C++ intersect() gives them
 #endif
 #ifdef HAS_TEXTURES
@@ -231,7 +236,7 @@ bool hit_sphere(const sphere_t s, float3 o, float3 D, float t_max, hit_t* h) {
     h->normal = on / r;
     h->material = s.material;
     h->light = s.light;
-#ifdef HAS_IMAGE_TEXTURES  // sphere.hpp: longitude, latitude from -y (0) to +y (1)
+#ifdef HAS_SURFACE_UV  // sphere.hpp: longitude, latitude from -y (0) to +y (1)
     const float phi = atan2(-h->normal.z, h->normal.x) + PI_F;
     h->uv = (float2)(phi / (2.0f * PI_F), acos(clamp(-h->normal.y, -1.0f, 1.0f)) / PI_F);
 #endif
@@ -266,7 +271,7 @@ bool hit_quad(const quad_t q, float3 o, float3 D, float t_max, hit_t* h) {
     h->normal = N;
     h->material = q.material;
     h->light = q.light;
-#ifdef HAS_IMAGE_TEXTURES
+#ifdef HAS_SURFACE_UV
     h->uv = (float2)(a, b);
 #endif
   }
@@ -275,7 +280,7 @@ bool hit_quad(const quad_t q, float3 o, float3 D, float t_max, hit_t* h) {
 #endif
 
 #ifdef HAS_PLANES
-#ifdef HAS_IMAGE_TEXTURES
+#ifdef HAS_SURFACE_UV
 onb_t onb(float3 n);
 #endif
 bool hit_plane(const plane_t pl, float3 o, float3 D, float t_max, hit_t* h) {
@@ -294,7 +299,7 @@ bool hit_plane(const plane_t pl, float3 o, float3 D, float t_max, hit_t* h) {
     h->normal = N;
     h->material = pl.material;
     h->light = -1;  // an infinite plane is never sampled: hit only (lights.hpp)
-#ifdef HAS_IMAGE_TEXTURES  // plane.hpp: along onb(N) from the plane's point
+#ifdef HAS_SURFACE_UV  // plane.hpp: along onb(N) from the plane's point
     const onb_t f = onb(N);
     h->uv = (float2)(dot(h->p - P0, f.t), dot(h->p - P0, f.b));
 #endif
@@ -471,7 +476,7 @@ bool hit_bvh(const scene_t* sc, float3 o, float3 D, float t_max, hit_t* h) {
     h->normal = normalize(cross(B - A, C - A));
     h->material = tri->material;
     h->light = tri->light;
-#ifdef HAS_IMAGE_TEXTURES  // mesh.hpp's texcoord(): the vertices' (u, v) by barycentrics, or these
+#ifdef HAS_SURFACE_UV  // mesh.hpp's texcoord(): the vertices' (u, v) by barycentrics, or these
     if (sc->has_tri_uvs) {
       const float4 p = sc->tri_uvs[2 * best_leaf], q = sc->tri_uvs[2 * best_leaf + 1];
       h->uv = w * p.xy + bu * p.zw + bv * q.xy;
@@ -606,8 +611,15 @@ float area_to_solid_angle_pdf(float pdf_area, float distance2, float cos_light) 
 float3 facing(const hit_t* h) { return h->front_face ? h->normal : -h->normal; }
 
 #ifdef HAS_CHECKER
-// texture.hpp's checker: the axis nearest the normal is dropped.
-float3 checker(float3 a, float3 b, float cell, const hit_t* h) {
+// texture.hpp's checker: in uv (uv_space), or in world space with the axis nearest the normal dropped.
+float3 checker(float3 a, float3 b, float cell, int uv_space, const hit_t* h) {
+#ifdef HAS_UV_CHECKER
+  if (uv_space) {  // a NaN or infinite coordinate reads as 0
+    const float u = isfinite(h->uv.x) ? h->uv.x : 0.0f, v = isfinite(h->uv.y) ? h->uv.y : 0.0f;
+    const float odd = fabs(fmod(floor(u / cell), 2.0f)) + fabs(fmod(floor(v / cell), 2.0f));  // no integer to overflow
+    return odd == 1.0f ? b : a;
+  }
+#endif
   const float3 an = fabs(h->normal);
   const int drop = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
   const float p[3] = {h->p.x, h->p.y, h->p.z};
@@ -699,7 +711,8 @@ float3 texture_at(int i, const hit_t* h) {
   }
 #endif
 #ifdef HAS_CHECKER
-  if (t->kind == TEX_CHECKER) return checker(t->a.xyz, t->b.xyz, t->cell, h);
+  if (t->kind == TEX_CHECKER || t->kind == TEX_CHECKER_UV)
+    return checker(t->a.xyz, t->b.xyz, t->cell, t->kind == TEX_CHECKER_UV, h);
 #endif
   return t->a.xyz;
 }
@@ -710,7 +723,7 @@ float3 albedo(global const material_t* m, const hit_t* h) {
   if (m->albedo_texture >= 0) return texture_at(m->albedo_texture, h);
 #endif
 #ifdef HAS_CHECKER
-  if (m->checker) return checker(m->albedo_a.xyz, m->albedo_b.xyz, m->cell, h);
+  if (m->checker) return checker(m->albedo_a.xyz, m->albedo_b.xyz, m->cell, m->checker == 2, h);
 #endif
   return m->albedo_a.xyz;
 }
@@ -1472,7 +1485,7 @@ kernel void render(global const sphere_t* spheres, global const quad_t* quads,
 #if defined(HAS_TEXTURES) || defined(HAS_ENVIRONMENT)
   sc.texels = texels;
 #endif
-#ifdef HAS_IMAGE_TEXTURES
+#ifdef HAS_SURFACE_UV
   sc.tri_uvs = tri_uvs;
   sc.has_tri_uvs = has_tri_uvs;
 #endif

@@ -50,6 +50,26 @@ TEST_CASE("diffuse spheres: only the sphere, checker, emitter and sphere-light s
   CHECK_FALSE(has(all, "-DMETHOD_NEE"));
 }
 
+TEST_CASE("a checker in uv: the material says 2 (world: 1), and only then HAS_UV_CHECKER") {
+  scene sc;
+  const int uv = sc.add_material(material::lambertian(texture::checker_uv(rgb(1), rgb(0), 0.25)));
+  const int world = sc.add_material(material::lambertian(texture::checker(rgb(1), rgb(0), 0.25)));
+  sc.add(sphere{{0, 0, -3}, 1}, uv);
+  sc.add(sphere{{2, 0, -3}, 1}, world);
+  const gpu_scene g = pack_scene(sc, 16, 16, depth(4));
+  CHECK(g.materials[std::size_t(uv)].checker == 2);
+  CHECK(g.materials[std::size_t(world)].checker == 1);
+  CHECK(has(build_options(g.features), "-DHAS_UV_CHECKER"));
+  CHECK_FALSE(has(build_options(pack_scene(spheres_scene(), 16, 16, depth(4)).features), "-DHAS_UV_CHECKER"));
+  // As a roughness map it is a texture record of its own kind.
+  material rough = material::rough_conductor(0.2, *find_metal("gold"));
+  rough.roughness_map = texture::checker_uv(rgb(0.1f), rgb(0.5f), 0.5);
+  sc.add(sphere{{-2, 0, -3}, 1}, sc.add_material(rough));
+  const gpu_scene r = pack_scene(sc, 16, 16, depth(4));
+  REQUIRE(r.textures.size() == 1);
+  CHECK(r.textures[0].kind == gpu_tex_checker_uv);
+}
+
 TEST_CASE("the Cornell box with glass: quads, a quad light, a dielectric; the method is a switch") {
   const scene sc = cornell_box<double>(cornell_variant::glass);
   const gpu_scene g = pack_scene(sc, 32, 32, depth(5, integrator::naive));

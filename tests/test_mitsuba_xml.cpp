@@ -71,8 +71,9 @@ TEST_CASE("Mitsuba XML: the Cornell box of scenes/mitsuba is scenes/cornell.yaml
   }
 }
 
-TEST_CASE("Mitsuba XML: the three scenes of scenes/mitsuba load, and their YAML loads again to the same") {
-  for (const char* f : {"scenes/mitsuba/cornell-box.xml", "scenes/mitsuba/materials.xml", "scenes/mitsuba/veach-mis.xml"}) {
+TEST_CASE("Mitsuba XML: the scenes of scenes/mitsuba load, and their YAML loads again to the same") {
+  for (const char* f : {"scenes/mitsuba/cornell-box.xml", "scenes/mitsuba/materials.xml", "scenes/mitsuba/veach-mis.xml",
+                        "scenes/mitsuba/checkerboard.xml"}) {
     INFO(f);
     const loaded_scene ls = load_scene_argument(f);
     CHECK(ls.sc.bounded_count() > 0);
@@ -97,6 +98,21 @@ TEST_CASE("Mitsuba XML: the three scenes of scenes/mitsuba load, and their YAML 
     }
   }
   CHECK(glass == 2);
+  // The checkerboard: zraka's checker in uv, cells 1/2 / to_uv's scale 4, even cells color0.
+  const loaded_scene c = load_scene_argument("scenes/mitsuba/checkerboard.xml");
+  REQUIRE(c.sc.quads.size() == 2);
+  const texture& t = c.sc.material_of({shape_kind::quad, 0}).albedo;
+  CHECK(t.type == texture::kind::checker);
+  CHECK(t.uv_space);
+  CHECK(t.cell == doctest::Approx(0.125));
+  CHECK(t.a == rgb(0.8f, 0.2f, 0.1f));
+  CHECK(t.b == rgb(0.1f, 0.3f, 0.7f));
+  const texture& d = c.sc.material_of({shape_kind::quad, 1}).albedo;  // Mitsuba's defaults
+  CHECK(d.cell == doctest::Approx(0.5));
+  CHECK(d.a == rgb(0.4f));
+  CHECK(d.b == rgb(0.2f));
+  // Not flipped as a bitmap's rectangle is: the quad's (a, b) are Mitsuba's (u, v).
+  CHECK(c.sc.quads[1].shape.v.y > 0);
 }
 
 TEST_CASE("Mitsuba XML: a bitmap on a rectangle: zraka's image texture, the quad's v edge running down") {

@@ -157,6 +157,17 @@ scene textured_scene() {
   return sc;
 }
 
+// Checkers in (u, v) (Mitsuba's checkerboard): the floor's 6 m quad in cells of 1/4 of its uv
+// (1.5 m, several pixels each), and a rough copper ball whose roughness map is one.
+scene uv_checker_scene() {
+  scene sc = stage(material::lambertian(texture::checker_uv(rgb(0.9f, 0.3f, 0.1f), rgb(0.1f, 0.3f, 0.8f), 0.25)), 1, 2.2,
+                   rgb(5.0f), rgb(0.05f), {0.4, 1.6, 3}, {0, 0.3, 0});
+  material rough = material::rough_conductor(0.3, *find_metal("copper"));
+  rough.roughness_map = texture::checker_uv(rgb(0.05f), rgb(0.6f), 0.25);
+  sc.add(sphere{{0, 0.5, 0}, 0.5}, sc.add_material(rough));
+  return sc;
+}
+
 // A lat-long sky (16 x 8, rotated) with a small bright sun, the only light, over a plane with a
 // diffuse ball, a mirror and a rough gold ball; or a constant sky.
 scene sky_scene(bool constant) {
@@ -447,6 +458,10 @@ TEST_CASE("against the CPU's mis: rough dielectrics, a ball and a pane (nee, mis
 
 TEST_CASE("against the CPU's mis: image textures (repeat, clamp, a mesh's uvs) and marble (nee, mis)") {
   check_scene("textures", textured_scene(), {integrator::nee, integrator::mis});
+}
+
+TEST_CASE("against the CPU's mis: checkers in uv, an albedo and a roughness map (nee, mis)") {
+  check_scene("uv checker", uv_checker_scene(), {integrator::nee, integrator::mis});
 }
 
 TEST_CASE("against the CPU's mis: an environment map, the only light (naive, nee, mis)") {

@@ -33,6 +33,22 @@ TEST_CASE("texture: the checker alternates and ignores rounding across the surfa
   CHECK(at(texture::solid(rgb(0.3f)), vec3(5, 5, 5)) == rgb(0.3f));
 }
 
+TEST_CASE("texture: a uv checker alternates in (u, v), whatever the point, and survives NaN and huge uv") {
+  const texture t = texture::checker_uv(rgb(1), rgb(0), 0.5);  // Mitsuba's checkerboard
+  const vec3 p(7, 3, -2), n(0, 0, 1);
+  CHECK(at(t, p, n, vec2(0.1, 0.1)) == rgb(1));   // (0, 0): even
+  CHECK(at(t, p, n, vec2(0.6, 0.1)) == rgb(0));   // (1, 0): odd
+  CHECK(at(t, p, n, vec2(0.6, 0.7)) == rgb(1));   // (1, 1): even
+  CHECK(at(t, p, n, vec2(-0.1, 0.1)) == rgb(0));  // floor: (-1, 0)
+  CHECK(at(t, vec3(100), vec3(1, 0, 0), vec2(0.1, 0.6)) == rgb(0));  // the point and normal do not matter
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  CHECK(at(t, p, n, vec2(nan, 0.1)) == rgb(1));   // NaN reads as 0
+  CHECK(at(t, p, n, vec2(inf, -inf)) == rgb(1));
+  CHECK(at(t, p, n, vec2(1e300, 1e300)) == rgb(1));  // beyond 2^53 every cell is even: no overflow
+  CHECK(at(t, p, n, vec2(1e300, 0.6)) == rgb(0));
+  CHECK(describe(t) == "a uv checker texture");
+}
+
 TEST_CASE("texture: an image is bilinear between texel centres, repeats or clamps, and survives NaN and huge uv") {
   auto img = std::make_shared<image>(2, 2);
   img->at(0, 0) = rgb(1, 0, 0), img->at(1, 0) = rgb(0, 1, 0);  // top row
@@ -152,6 +168,14 @@ TEST_CASE("texture: scene files read image and noise textures, and name what is 
   CHECK_THROWS_WITH_AS(load("{noise: {octaves: 40}}"), doctest::Contains("materials.m.albedo.noise.octaves"), error);
   CHECK_THROWS_WITH_AS(load("{noise: {frequency: -1}}"), doctest::Contains("must be in (0, 1e6]"), error);
   CHECK_THROWS_WITH_AS(load("{noise: {colour: 1}}"), doctest::Contains("unknown key"), error);
+  const loaded_scene uv = load("{checker: {even: 0.9, odd: 0.1, scale: 0.25, space: uv}}");
+  CHECK(uv.sc.materials[1].albedo.uv_space);
+  CHECK(uv.sc.materials[1].albedo.cell == 0.25);
+  CHECK(uv.resolved.find("space: uv") != std::string::npos);
+  CHECK_FALSE(load("{checker: {space: world}}").sc.materials[1].albedo.uv_space);
+  CHECK(load("{checker: {}}").resolved.find("space") == std::string::npos);  // world is the default, not printed
+  CHECK_THROWS_WITH_AS(load("{checker: {space: xyz}}"), doctest::Contains("materials.m.albedo.checker.space: must be world or uv"),
+                       error);
   std::filesystem::remove_all(dir);
 }
 

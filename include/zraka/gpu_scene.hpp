@@ -78,7 +78,7 @@ enum gpu_material_kind : std::int32_t {
 struct gpu_material {
   gpu_float4 albedo_a, albedo_b;  // solid: a; checker: a and b; phong: kd and ks
   gpu_float4 radiance;            // emitted from the front face (both faces if two_sided)
-  std::int32_t kind, checker, two_sided, schlick;  // schlick: the conductor's F0 is in eta
+  std::int32_t kind, checker, two_sided, schlick;  // checker: 1 world, 2 uv; schlick: F0 in eta
   float fuzz, ior, cell, shininess;
   gpu_float4 eta, k;              // rough_conductor: the complex index per channel (or F0)
   std::int32_t albedo_texture, roughness_texture, pad[2];  // index in textures, or -1
@@ -86,7 +86,9 @@ struct gpu_material {
 };
 // texture.hpp's texture, for an image or noise albedo and any roughness map (a material's
 // solid or checker albedo stays in the material itself).
-enum gpu_texture_kind : std::int32_t { gpu_tex_solid = 0, gpu_tex_checker = 1, gpu_tex_image = 2, gpu_tex_noise = 3 };
+enum gpu_texture_kind : std::int32_t {
+  gpu_tex_solid = 0, gpu_tex_checker = 1, gpu_tex_image = 2, gpu_tex_noise = 3, gpu_tex_checker_uv = 4
+};
 struct gpu_texture {
   gpu_float4 a, b;                  // solid, checker, noise colours
   std::int32_t kind, width, height, first;  // image: its texels from texels[first], row 0 at the top
@@ -146,6 +148,7 @@ struct gpu_features {
   bool metal = false, dielectric = false, phong = false, checker = false, emitters = false;
   bool rough_conductor = false, rough_dielectric = false;  // microfacet.hpp
   bool textures = false, image_textures = false, noise_textures = false;  // texture records
+  bool uv_checker = false;  // a checker in surface coordinates (texture.hpp's uv_space)
   bool environment = false;  // rays that leave see it; sampled when it is in the light table
   bool sphere_lights = false, quad_lights = false, triangle_lights = false, point_lights = false;
   bool thin_lens = false;
@@ -225,7 +228,7 @@ inline gpu_material to_gpu(const material& m) {
   } else {
     g.albedo_a = to_gpu(m.albedo.a);
     g.albedo_b = to_gpu(m.albedo.b);
-    g.checker = m.albedo.type == texture::kind::checker ? 1 : 0;
+    g.checker = m.albedo.type != texture::kind::checker ? 0 : m.albedo.uv_space ? 2 : 1;
   }
   g.cell = float(m.albedo.cell);
   g.radiance = to_gpu(m.radiance);
@@ -248,7 +251,7 @@ inline std::int32_t pack_texture(gpu_scene& g, const texture& t) {
   o.repeat = t.repeat ? 1 : 0;
   switch (t.type) {
     case texture::kind::solid: o.kind = gpu_tex_solid; break;
-    case texture::kind::checker: o.kind = gpu_tex_checker; break;
+    case texture::kind::checker: o.kind = t.uv_space ? gpu_tex_checker_uv : gpu_tex_checker; break;
     case texture::kind::noise: o.kind = gpu_tex_noise; break;
     case texture::kind::image: {
       if (!t.map || t.map->width < 1 || t.map->height < 1) throw error("realtime: " + describe(t) + " is empty");
@@ -335,6 +338,7 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   auto note_texture = [&](const texture& t) {
     f.textures = true;
     f.checker |= t.type == texture::kind::checker;
+    f.uv_checker |= t.type == texture::kind::checker && t.uv_space;
     f.image_textures |= t.type == texture::kind::image;
     f.noise_textures |= t.type == texture::kind::noise;
   };
@@ -347,6 +351,7 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
     f.rough_dielectric |= m.kind == material_kind::rough_dielectric;
     f.checker |= m.albedo.type == texture::kind::checker &&
                  (m.kind == material_kind::lambertian || m.kind == material_kind::fuzzy_metal);
+    f.uv_checker |= f.checker && m.albedo.type == texture::kind::checker && m.albedo.uv_space;
     if (textured_albedo(m)) note_texture(m.albedo);
     if (roughness_map(m)) note_texture(*m.roughness_map);
     f.emitters |= emits(m);
@@ -402,7 +407,7 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
     for (const packed_triangle& p : bvh.triangles()) {
       g.triangles.push_back({to_gpu(p.a), to_gpu(p.b), to_gpu(p.c), p.id,
                              tri_material[p.id], tri_light[p.id], 0});
-      if (f.image_textures) g.triangle_uvs.insert(g.triangle_uvs.end(), tri_uv[p.id].begin(), tri_uv[p.id].end());
+      if (f.image_textures || f.uv_checker) g.triangle_uvs.insert(g.triangle_uvs.end(), tri_uv[p.id].begin(), tri_uv[p.id].end());
     }
     for (const triangle_bvh_node4& n : bvh.nodes()) {
       gpu_node4 o;
@@ -533,6 +538,7 @@ inline std::string build_options(const gpu_features& f, bool all_features = fals
   flag(f.textures, "HAS_TEXTURES");  // records for the two below and for roughness maps
   flag(f.image_textures, "HAS_IMAGE_TEXTURES");
   flag(f.noise_textures, "HAS_NOISE_TEXTURES");
+  flag(f.uv_checker, "HAS_UV_CHECKER");
   flag(f.environment, "HAS_ENVIRONMENT");
   flag(f.sphere_lights, "HAS_SPHERE_LIGHTS");
   flag(f.quad_lights, "HAS_QUAD_LIGHTS");

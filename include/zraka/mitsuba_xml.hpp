@@ -12,16 +12,16 @@
 //   (max_depth: Mitsuba counts path segments, zraka bounces, so zraka's max_depth is one less);
 //   shapes sphere, rectangle, cube, obj and ply (mesh_file.hpp; face_normals: zraka's path tracers shade meshes flat),
 //   and disk when the program registered one (below);
-//   a bitmap texture as a diffuse reflectance, on rectangles (whose uv were checked); BSDFs twosided around diffuse, conductor (material
+//   a bitmap or checkerboard texture as a diffuse reflectance, on rectangles (whose uv were checked); BSDFs twosided around diffuse, conductor (material
 //   'none') or roughconductor, and dielectric, roughdielectric (both GGX); emitters area (on a
 //   shape whose BSDF is black), point, constant, envmap (rotated about +y only);
 //   <default>, $name, <ref id>, and the transforms translate, rotate, scale, matrix, lookat.
 // Everything else is an error naming the file, the line, the element and the attribute:
 //   cornell.xml:12: <bsdf type="plastic">: unknown plugin 'plastic' (zraka reads: ...)
 // Refused because zraka's model differs: a bare diffuse or conductor (Mitsuba's are black from
-// behind, zraka's reflect on both sides: wrap them in twosided), Beckmann roughness, the
-// checkerboard (Mitsuba's is in uv space, zraka's in world space), a bitmap on other shapes than
-// rectangles or anywhere but a diffuse reflectance, Mitsuba's gaussian pixel filter
+// behind, zraka's reflect on both sides: wrap them in twosided), Beckmann roughness, a bitmap or
+// checkerboard on other shapes than rectangles or anywhere but a diffuse reflectance, Mitsuba's
+// gaussian pixel filter
 // (zraka's is a box), a mirroring or shearing to_world where zraka's shape cannot follow it.
 // Limits as for YAML scenes (limits.hpp): file_bytes, and yaml_nodes for the XML's elements.
 // Needs pugixml (libpugixml-dev) and yaml-cpp; compiled once into zraka::compiled when zraka is
@@ -193,7 +193,7 @@ class mitsuba_reader {
     std::string name;     // its name in materials
     bool black = false;   // reflects nothing: may carry an area emitter
     bool one_sided = false;  // a bare diffuse or conductor
-    pugi::xml_node textured;  // its bitmap, if any: on rectangles only
+    pugi::xml_node textured;  // its bitmap or checkerboard, if any: on rectangles only
     bool emitted = false;
   };
   std::map<std::string, bsdf_t> bsdfs_;  // by id
@@ -704,7 +704,7 @@ class mitsuba_reader {
       m["type"] = "lambertian";
       const pugi::xml_node tex = param(p, "reflectance");
       if (tex && std::string(tex.name()) == "texture") {
-        m["albedo"] = bitmap(tex);
+        m["albedo"] = attr(tex, "type") == "checkerboard" ? checkerboard(tex) : bitmap(tex);
         b.textured = tex;
       } else {
         const rgb r = colour_param(p, "reflectance", 0.5);
@@ -770,7 +770,7 @@ class mitsuba_reader {
   YAML::Node bitmap(const pugi::xml_node& t) {
     attributes(t, {"type", "name", "id"});
     if (attr(t, "type") != "bitmap")
-      fail(t, "type", "textures other than bitmap are outside zraka's subset (Mitsuba's checkerboard is in uv space, zraka's checker in world space)");
+      fail(t, "type", "unknown texture plugin (zraka reads: bitmap, checkerboard)");
     const params p = parameters(t, {"filename", "filter_type", "wrap_mode", "raw"});
     no_nested(p, t);
     const std::string file = file_param(t, p).first;
@@ -783,6 +783,31 @@ class mitsuba_reader {
     img["srgb"] = !bool_param(p, "raw", false);
     img["wrap"] = wrap;
     a["image"] = img;
+    a.SetStyle(YAML::EmitterStyle::Flow);
+    return a;
+  }
+  // A checkerboard reflectance: zraka's checker in uv space. Mitsuba's takes color0 where the
+  // fractional parts of u and v are on the same side of 1/2: cells of 1/2, even ones color0.
+  YAML::Node checkerboard(const pugi::xml_node& t) {
+    attributes(t, {"type", "name", "id"});
+    const params p = parameters(t, {"color0", "color1", "to_uv"});
+    no_nested(p, t);
+    const rgb c0 = colour_param(p, "color0", 0.4), c1 = colour_param(p, "color1", 0.2);
+    for (const char* k : {"color0", "color1"})
+      if (max_component(colour_param(p, k, 0)) > 1) fail(param(p, k), "value", "a reflectance must be at most 1");
+    double s = 1;
+    if (param(p, "to_uv")) {  // uv' = to_uv (u, v, 0): a uniform scale of the plane only
+      const affine a = transform_param(p, "to_uv");
+      s = a.linear[0][0];
+      if (!(s > 0) || a.linear[1][1] != s || a.linear[0][1] != 0 || a.linear[1][0] != 0 || a.translation != vec3(0))
+        fail(param(p, "to_uv"), "zraka's uv checker takes a to_uv that scales u and v alike, nothing else");
+    }
+    YAML::Node c, a;
+    c["even"] = flow(c0);
+    c["odd"] = flow(c1);
+    c["scale"] = num(0.5 / s);
+    c["space"] = "uv";
+    a["checker"] = c;
     a.SetStyle(YAML::EmitterStyle::Flow);
     return a;
   }
@@ -969,11 +994,12 @@ class mitsuba_reader {
     } else {
       if (!b) fail(n, "zraka needs the shape's BSDF (Mitsuba's default is a one-sided diffuse 0.5)");
       if (b->textured && type != "rectangle")
-        fail(b->textured, "a bitmap is read on a rectangle only (zraka's uv on a " + type + " is not checked against Mitsuba's)");
+        fail(b->textured, "a " + attr(b->textured, "type") + " is read on a rectangle only (zraka's uv on a " + type +
+                              " is not checked against Mitsuba's)");
       // Mitsuba's bitmap has v = 0 at the image's top row, zraka's at the bottom (texture.hpp):
       // the quad runs its v edge downwards instead. It then faces -z, which a two-sided
       // diffuse surface does not see.
-      if (b->textured) {
+      if (b->textured && attr(b->textured, "type") == "bitmap") {
         made[0]["corner"] = flow(a.point(vec3(-1, 1, 0)));
         made[0]["v"] = flow(a.vector(vec3(0, -2, 0)));
       }

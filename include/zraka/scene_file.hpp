@@ -499,7 +499,7 @@ class scene_reader {
   }
 
   // [listing scene-texture]
-  // albedo: a colour, {checker: {even, odd, scale}}, {image: {file, srgb, wrap}} or
+  // albedo: a colour, {checker: {even, odd, scale, space}}, {image: {file, srgb, wrap}} or
   // {noise: {low, high, frequency, octaves, marble}}
   texture albedo(const YAML::Node& n, const std::string& field) const {
     if (!n.IsMap()) return texture::solid(colour(n, field));
@@ -508,13 +508,18 @@ class scene_reader {
     if (n.size() != 1 || !n["checker"])
       fail(n, field, "expected a colour, {checker: {...}}, {image: {file, ...}} or {noise: {...}}");
     const YAML::Node c = n["checker"];
-    keys(c, field + ".checker", {"even", "odd", "scale"});
+    keys(c, field + ".checker", {"even", "odd", "scale", "space"});
     texture t = texture::checker(texture{}.a, texture{}.b, texture{}.cell);
     if (c["even"]) t.a = colour(c["even"], field + ".checker.even");
     if (c["odd"]) t.b = colour(c["odd"], field + ".checker.odd");
     if (c["scale"]) {
       t.cell = number(c["scale"], field + ".checker.scale");
       if (!(t.cell > 0)) fail(c["scale"], field + ".checker.scale", "must be positive");
+    }
+    if (c["space"]) {  // world (the default) or uv: the hit's surface coordinates
+      const std::string space = text(c["space"], field + ".checker.space");
+      if (space != "world" && space != "uv") fail(c["space"], field + ".checker.space", "must be world or uv, got '" + space + "'");
+      t.uv_space = space == "uv";
     }
     return t;
   }
@@ -578,6 +583,7 @@ class scene_reader {
     c["even"] = flow(t.a);
     c["odd"] = flow(t.b);
     c["scale"] = num(t.cell);
+    if (t.uv_space) c["space"] = "uv";
     n["checker"] = c;
     n.SetStyle(YAML::EmitterStyle::Flow);
     return n;

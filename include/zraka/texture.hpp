@@ -1,7 +1,7 @@
 #pragma once
 // Textures: an albedo that varies over a surface. A solid colour; a checkerboard in world space
-// (book 1.8's floor); an image, looked up by the hit's surface coordinates uv; or procedural
-// noise and marble (noise.hpp), functions of the point in space.
+// (book 1.8's floor) or in the hit's surface coordinates uv (Mitsuba's checkerboard); an image,
+// looked up by uv; or procedural noise and marble (noise.hpp), functions of the point in space.
 #include <zraka/image.hpp>
 #include <zraka/noise.hpp>
 #include <zraka/vec.hpp>
@@ -20,7 +20,8 @@ struct texture {
   enum class kind { solid, checker, image, noise } type = kind::solid;
   rgb a{0.8f};          // the colour (solid), the first checker colour, noise's colour at 0
   rgb b{0.2f};          // the second checker colour, noise's colour at 1
-  double cell = 1.0;    // checker cell size in world units
+  double cell = 1.0;    // checker cell size in world units (in uv units when uv_space)
+  bool uv_space = false;  // checker: cells in the surface coordinates uv instead of world space
   // image: linear RGB, row 0 at the top; u runs left to right, v bottom to top, period 1.
   std::shared_ptr<const zraka::image> map;
   bool repeat = true;   // image: wrap (repeat) or clamp to the edge texels outside [0, 1]
@@ -40,6 +41,12 @@ struct texture {
     texture t;
     t.type = kind::checker;
     t.a = c0, t.b = c1, t.cell = cell_size;
+    return t;
+  }
+  // Cells of `cell_size` in (u, v), even where floor(u / cell) + floor(v / cell) is even.
+  static texture checker_uv(rgb c0, rgb c1, double cell_size) {
+    texture t = checker(c0, c1, cell_size);
+    t.uv_space = true;
     return t;
   }
   static texture image_map(std::shared_ptr<const zraka::image> img, bool repeat_outside, std::string name = "image") {
@@ -63,7 +70,7 @@ struct texture {
 inline std::string describe(const texture& t) {
   switch (t.type) {
     case texture::kind::solid: return "a solid colour";
-    case texture::kind::checker: return "a checker texture";
+    case texture::kind::checker: return t.uv_space ? "a uv checker texture" : "a checker texture";
     case texture::kind::image: return "an image texture ('" + t.source + "')";
     case texture::kind::noise: return t.marble ? "a marble texture" : "a noise texture";
   }
@@ -111,6 +118,13 @@ rgb evaluate(const texture& tex, const vec3_t<T>& p, const vec3_t<T>& n, const v
       return float(1 - s) * tex.a + float(s) * tex.b;
     }
     case texture::kind::checker: break;
+  }
+  if (tex.uv_space) {  // a NaN or infinite coordinate reads as 0, as for images
+    const double u = std::isfinite(double(uv.x)) ? double(uv.x) : 0, v = std::isfinite(double(uv.y)) ? double(uv.y) : 0;
+    // Each cell index's parity in double (0 or +-1): no integer conversion to overflow, and past
+    // 2^53, where every index is even, u's cells do not swallow v's.
+    const double odd = std::abs(std::fmod(std::floor(u / tex.cell), 2.0)) + std::abs(std::fmod(std::floor(v / tex.cell), 2.0));
+    return odd == 1 ? tex.b : tex.a;
   }
   const vec3_t<T> an = glm::abs(n);
   const int drop = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
