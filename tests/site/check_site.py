@@ -78,6 +78,15 @@ document.querySelectorAll('math').forEach((m, k) => {
     if (s.children.length == 2 && !(rect(s.children[1])[3] > rect(s.children[0])[3] + 0.5))
       bad.push('a subscript is not lowered');
   });
+  // A bar (\bar, \overline: texmath writes U+00AF or U+203E) over more than one letter: the math
+  // font has no wider variants of either, Chromium draws it at its width (over x^2 it covers
+  // the x alone), so the book writes such a mean as \\langle...\\rangle. A letter is at most 2.5 bars wide.
+  m.querySelectorAll('mover').forEach(o => {
+    const s = o.children[1];
+    if (o.children.length == 2 && s.localName == 'mo' && ['\u00af', '\u203e'].includes(s.textContent.trim())
+        && o.children[0].getBoundingClientRect().width > 2.5 * s.getBoundingClientRect().width)
+      bad.push('a bar does not reach over its base (write a mean of more than one letter as \\langle...\\rangle)');
+  });
   const ann = m.querySelector('annotation');
   out.maths.push({k: k, tex: texOf(m), w: r.width, h: r.height,
                   merror: !!m.querySelector('merror'),
