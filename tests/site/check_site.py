@@ -222,7 +222,7 @@ def main():
     seen = {}      # page -> its ids
     anchors = []   # (page, link, target page, fragment)
     shown = set()  # image files shown
-    linked = set()  # files linked
+    linked = set()  # files linked from book pages
     nmath = 0
     try:
         for page in pages:
@@ -264,7 +264,7 @@ def main():
                     fault(page, f"link {ln['attr']} is a folder ({rel}/), not a page")
                 elif not os.path.isfile(f):
                     fault(page, f"link {ln['attr']}: {rel} does not exist")
-                else:
+                elif page in book_pages:  # not the folder listings, which link every file
                     linked.add(rel)
                 if frag and os.path.isfile(f):
                     if not rel.endswith(".html"):
