@@ -11,10 +11,18 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 book="$root/book"
 out="${1:-$root/build/book-html}"
 command -v pandoc >/dev/null || { echo "book_html: pandoc is missing (bash tools/setup.sh)" >&2; exit 1; }
-mkdir -p "$out"
-out="$(cd "$out" && pwd)"
+# The site is written beside OUT_DIR and replaces it when complete: no half-written site, no page
+# left from a removed chapter. A folder that is not a site of this script is never replaced.
+if [[ -d $out && -n $(ls -A "$out") && ! -f $out/contents.html ]]; then
+  echo "book_html: $out is not empty and not a site made by book_html.sh; not replacing it" >&2
+  exit 1
+fi
+mkdir -p "$(dirname "$out")"
+final="$(cd "$(dirname "$out")" && pwd)/$(basename "$out")"
+out=$(mktemp -d "$final.new.XXXXXX")
+chmod 755 "$out"
 tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+trap 'wait; rm -rf "$tmp" "$out"' EXIT  # wait: pandocs still running when one failed
 
 # Pages in course order: the contents, the introduction, the chapters (N.M sorted as numbers),
 # the errata, then the assignments.
@@ -138,4 +146,6 @@ while IFS= read -r -d '' d; do
 done < <(cd "$book" && find . -mindepth 1 -type d -print0)
 pandoc "$tmp/contents.md" -f markdown -t html5 --standalone --metadata pagetitle="All pages — zraka" \
   --include-in-header "$tmp/style.html" -o "$out/contents.html"
-echo "book_html: $n pages -> $out/index.html (and $out/contents.html)"
+rm -rf "$final"
+mv "$out" "$final"
+echo "book_html: $n pages -> $final/index.html (and $final/contents.html)"

@@ -13,7 +13,7 @@ On every page of the site, in the DOM as Chromium rendered it:
 Every book page has its HTML page and every figure of book/figures/ is shown on some page.
 A screenshot of one page (SHOT_PAGE, at SHOT_SIZE) is compared with tests/site/expected.png.
 
-  check_site.py --work DIR        build the site into DIR/site (removed first) and check it
+  check_site.py --work DIR        build the site into DIR/site (replaced) and check it
   check_site.py --site DIR        check a site already built (e.g. a scratch copy)
   check_site.py --work DIR --update-expected   also write the screenshot as the expected PNG
 Exit 1 with one line per fault, each naming the page and the item."""
@@ -114,8 +114,7 @@ def path_of(url):
 
 
 def build(work):
-    site = os.path.join(work, "site")
-    shutil.rmtree(site, ignore_errors=True)
+    site = os.path.join(work, "site")  # book_html.sh replaces it whole
     t = time.monotonic()
     subprocess.run(["bash", os.path.join(root, "tools", "book_html.sh"), site], check=True)
     print(f"book.site: built the site in {time.monotonic() - t:.1f} s")
