@@ -8,10 +8,12 @@ On every page of the site, in the DOM as Chromium rendered it:
   - every link inside the site reaches a file of the site, and its #anchor an id of that page;
   - no TeX is left as text outside code (no $...$, no \\frac);
   - every <math> has a box, holds no <merror>, its TeX annotation is not shown, and its fractions,
-    superscripts and subscripts are laid out as math (numerator above denominator...);
+    superscripts and subscripts are laid out as math (numerator above denominator...), no bar is
+    drawn over only part of its base;
   - nothing is loaded from the network.
-Every book page has its HTML page and every figure of book/figures/ is shown on some page.
-A screenshot of one page (SHOT_PAGE, at SHOT_SIZE) is compared with tests/site/expected.png.
+Every book page has its HTML page and every figure of book/figures/ is shown or linked on some
+book page. A screenshot of one page (SHOT_PAGE, at SHOT_SIZE; fonts pinned to DejaVu by
+tools/book_html.sh) is compared with tests/site/expected.png.
 
   check_site.py --work DIR        build the site into DIR/site (replaced) and check it
   check_site.py --site DIR        check a site already built (e.g. a scratch copy)
