@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian packages zraka needs, and does nothing when they are all present.
-# Usage: bash tools/setup.sh [--extras]   (--extras adds Embree for the BVH benchmark, pandoc for the book and python3-venv for tools/mitsuba-setup.sh)
+# Usage: bash tools/setup.sh [--extras]   (--extras adds Embree for the BVH benchmark and python3-venv for tools/mitsuba-setup.sh)
 set -euo pipefail
 
 core=(build-essential cmake pkg-config
@@ -9,8 +9,11 @@ core=(build-essential cmake pkg-config
       doctest-dev libyaml-cpp-dev libpugixml-dev libcli11-dev libfmt-dev
       xvfb xauth libgl1-mesa-dri python3 python3-matplotlib  # matplotlib: tools/plot_convergence.py
       libassimp-dev  # PLY and glTF meshes (mesh_file.hpp)
+      # the book as a website (tools/book_html.sh) and its test in headless Chromium (book.site):
+      pandoc chromium chromium-driver python3-selenium python3-pil python3-numpy
+      fonts-dejavu-core fonts-dejavu-extra  # the site's pinned fonts (DejaVu Math TeX Gyre for MathML)
       clang libclang-rt-14-dev)  # clang: tools/fuzz.sh (libFuzzer), which tools/test.sh runs
-extras=(libembree-dev pandoc python3-venv)  # python3-venv: tools/mitsuba-setup.sh
+extras=(libembree-dev python3-venv)  # python3-venv: tools/mitsuba-setup.sh
 
 want=("${core[@]}")
 [[ "${1:-}" == "--extras" ]] && want+=("${extras[@]}")
