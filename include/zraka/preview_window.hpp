@@ -90,6 +90,7 @@ struct preview_window::state {
   static constexpr int font_scale = 2, line_height = 12 * font_scale, pad = 6;
   static constexpr int bar = 2 * line_height + 2 * pad;  // two lines of text under the image
   static constexpr std::uint8_t bar_grey = 32, text_grey = 235;
+  static constexpr const char* done_keys = "done. S: screenshot   Q, Esc: close";
 
   int width, height;      // the image
   int zoom = 1, shrink = 1;  // shown at zoom/shrink: whole pixels, so a screenshot holds the image's bytes
@@ -108,7 +109,7 @@ struct preview_window::state {
 
   state(const program_options& opt, int w, int h, const image* ref, const std::filesystem::path& root)
       : width(w), height(h), reference(ref), screenshot_every_pass(opt.window_screenshot),
-        screenshot_stem(opt.sibling("-window", "")) {
+        screenshot_stem(window_stem(opt.out)) {
     zoom = std::max(1, 384 / std::max(w, h));  // small test renders are shown large
     if (const GLFWvidmode* mode = glfwGetVideoMode(glfwGetPrimaryMonitor())) {  // larger than the screen: shrunk
       const int room_w = mode->width, room_h = std::max(1, mode->height - bar);
@@ -116,7 +117,8 @@ struct preview_window::state {
         zoom = 1, shrink = std::max((w + room_w - 1) / room_w, (h + room_h - 1) / room_h);
     }
     shown_w = w * zoom / shrink, shown_h = h * zoom / shrink;
-    fw = std::max(shown_w, text_width("S: screenshot   Q, Esc: stop") + 2 * pad), fh = shown_h + bar;
+    const int text_w = std::max(text_width(done_keys), text_width("65536 spp  99999.99 s  RMSE 0.00000"));
+    fw = std::max(shown_w, text_w + 2 * pad), fh = shown_h + bar;
     win.emplace(fw, fh, "zraka preview", 3, 3);
     program = gl::link_program({{GL_VERTEX_SHADER, detail::resource_path_in("kernels/realtime.vert", root)},
                                 {GL_FRAGMENT_SHADER, detail::resource_path_in("kernels/realtime.frag", root)}});
@@ -142,7 +144,12 @@ struct preview_window::state {
     glDeleteProgram(program);
   }
 
-  static int text_width(std::string text) { return font_scale * stb_easy_font_width(text.data()); }
+  // S saves <out's stem>-window-1.png, -2.png, ... beside --out.
+  static std::string window_stem(const std::filesystem::path& out) {
+    return out.empty() ? "window-" : (out.parent_path() / out.stem()).string() + "-window-";
+  }
+
+  static int text_width(const char* text) { return font_scale * stb_easy_font_width(std::string(text).data()); }
 
   // The font's quads, filled at font_scale into the frame; (x, y) from the window's top left.
   void text(int x, int y, std::string line) {
@@ -172,7 +179,7 @@ struct preview_window::state {
     int n = std::snprintf(line, sizeof line, "%d spp  %.2f s", spp, seconds);
     if (reference) std::snprintf(line + n, sizeof line - std::size_t(n), "  RMSE %.5f", error);
     text(pad, shown_h + pad, line);
-    text(pad, shown_h + pad + line_height, done ? "done. S: screenshot   Q, Esc: close" : "S: screenshot   Q, Esc: stop");
+    text(pad, shown_h + pad + line_height, done ? done_keys : "S: screenshot   Q, Esc: stop");
     glfwSetWindowTitle(win->get(), ("zraka preview: " + std::string(line)).c_str());
 
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
