@@ -42,23 +42,24 @@ namespace zraka {
 class preview_window {
  public:
   // Opens the window when the command line said --window (opt.window), else does nothing.
-  // `reference`: what the error shown is measured against (nullptr: none). Throws zraka::error
-  // when there is no display.
+  // `reference`: what the error shown is measured against (nullptr: none); `unit`: what show()'s
+  // count counts. Throws zraka::error when there is no display.
   // The shaders are resources: the root is the program's, taken where it calls (compiled.hpp).
   ZRAKA_PREVIEW_FN preview_window(const program_options& opt, int width, int height, const image* reference = nullptr,
+                                  const char* unit = "spp",
                                   const std::filesystem::path& resource_root = zraka::resource_root());
   // Without --window-screenshot, waits until the user closes the window (Q, Escape).
   ZRAKA_PREVIEW_FN ~preview_window();
   preview_window(const preview_window&) = delete;
   preview_window& operator=(const preview_window&) = delete;
 
-  // After a pass: shows `mean`. False once the user asked to stop.
-  bool show(const image& mean, int spp, double seconds) { return !s_ || show_pass(mean, spp, seconds); }
+  // After a pass: shows `mean` after `count` samples per pixel (or passes). False once the user asked to stop.
+  bool show(const image& mean, int count, double seconds) { return !s_ || show_pass(mean, count, seconds); }
 
  private:
   struct state;
   std::unique_ptr<state> s_;
-  ZRAKA_PREVIEW_FN bool show_pass(const image& mean, int spp, double seconds);
+  ZRAKA_PREVIEW_FN bool show_pass(const image& mean, int count, double seconds);
 };
 
 }  // namespace zraka
@@ -96,19 +97,19 @@ struct preview_window::state {
   int zoom = 1, shrink = 1;  // shown at zoom/shrink: whole pixels, so a screenshot holds the image's bytes
   int shown_w = 0, shown_h = 0, fw = 0, fh = 0;  // the image as shown; the window
   const image* reference;
-  std::string screenshot_every_pass, screenshot_stem;
+  std::string unit, screenshot_every_pass, screenshot_stem;
   gl::glfw_session glfw;
   std::optional<gl::window> win;
   GLuint program = 0, vao = 0, texture = 0;
   std::string bytes;                // the last mean, 8-bit sRGB as written to PNG
   std::vector<std::uint8_t> frame;  // the window's pixels, rows bottom to top (OpenGL's order)
   std::vector<char> quads;          // the font's output
-  int spp = 0, shots = 0;
+  int count = 0, shots = 0;
   double seconds = 0, error = std::numeric_limits<double>::quiet_NaN();
   bool stop = false, save = false, said_stop = false;
 
-  state(const program_options& opt, int w, int h, const image* ref, const std::filesystem::path& root)
-      : width(w), height(h), reference(ref), screenshot_every_pass(opt.window_screenshot),
+  state(const program_options& opt, int w, int h, const image* ref, const char* what, const std::filesystem::path& root)
+      : width(w), height(h), reference(ref), unit(what), screenshot_every_pass(opt.window_screenshot),
         screenshot_stem(window_stem(opt.out)) {
     zoom = std::max(1, 384 / std::max(w, h));  // small test renders are shown large
     if (const GLFWvidmode* mode = glfwGetVideoMode(glfwGetPrimaryMonitor())) {  // larger than the screen: shrunk
@@ -117,7 +118,7 @@ struct preview_window::state {
         zoom = 1, shrink = std::max((w + room_w - 1) / room_w, (h + room_h - 1) / room_h);
     }
     shown_w = w * zoom / shrink, shown_h = h * zoom / shrink;
-    const int text_w = std::max(text_width(done_keys), text_width("65536 spp  99999.99 s  RMSE 0.00000"));
+    const int text_w = std::max(text_width(done_keys), text_width(("65536 " + unit + "  99999.99 s  RMSE 0.00000").c_str()));
     fw = std::max(shown_w, text_w + 2 * pad), fh = shown_h + bar;
     win.emplace(fw, fh, "zraka preview", 3, 3);
     program = gl::link_program({{GL_VERTEX_SHADER, detail::resource_path_in("kernels/realtime.vert", root)},
@@ -176,7 +177,7 @@ struct preview_window::state {
         for (int c = 0; c < 3; ++c) frame[to + std::size_t(c)] = std::uint8_t(bytes[from + std::size_t(c)]);
       }
     char line[160];
-    int n = std::snprintf(line, sizeof line, "%d spp  %.2f s", spp, seconds);
+    int n = std::snprintf(line, sizeof line, "%d %s  %.2f s", count, unit.c_str(), seconds);
     if (reference) std::snprintf(line + n, sizeof line - std::size_t(n), "  RMSE %.5f", error);
     text(pad, shown_h + pad, line);
     text(pad, shown_h + pad + line_height, done ? done_keys : "S: screenshot   Q, Esc: stop");
@@ -192,7 +193,7 @@ struct preview_window::state {
   // The back buffer just drawn, as a PNG (atomic, image_io.hpp).
   void write_screenshot(const std::string& file) {
     write_png(gl::to_image(gl::read_pixels(fw, fh)), file);
-    std::printf("window: wrote %s (%d spp)\n", file.c_str(), spp);
+    std::printf("window: wrote %s (%d %s)\n", file.c_str(), count, unit.c_str());
   }
 
   // Draws, saves what was asked for, shows it, and reads the keys.
@@ -207,15 +208,13 @@ struct preview_window::state {
 };
 
 ZRAKA_PREVIEW_FN preview_window::preview_window(const program_options& opt, int width, int height,
-                                                const image* reference, const std::filesystem::path& resource_root) {
+                                                const image* reference, const char* unit,
+                                                const std::filesystem::path& resource_root) {
   if (!opt.window) return;
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display)
-    throw error("--window needs an X display, and DISPLAY is not set; run it under a virtual one "
-                "(xvfb-run -a ... --window --window-screenshot shot.png) or leave out --window");
+  detail::check_window_display();  // program_options checked it already; a caller may have set opt.window itself
   if (reference) check_same_size(image(width, height), *reference);
   try {
-    s_ = std::make_unique<state>(opt, width, height, reference, resource_root);
+    s_ = std::make_unique<state>(opt, width, height, reference, unit, resource_root);
   } catch (const error& e) {
     throw error(std::string("--window: ") + e.what());
   }
@@ -223,15 +222,15 @@ ZRAKA_PREVIEW_FN preview_window::preview_window(const program_options& opt, int 
               s_->fw, s_->fh, s_->zoom, s_->shrink);
 }
 
-ZRAKA_PREVIEW_FN bool preview_window::show_pass(const image& mean, int spp, double seconds) {
+ZRAKA_PREVIEW_FN bool preview_window::show_pass(const image& mean, int count, double seconds) {
   state& s = *s_;
-  s.spp = spp, s.seconds = seconds;
+  s.count = count, s.seconds = seconds;
   if (s.reference) s.error = rmse(mean, *s.reference);
   detail::encode_8bit(mean, s.bytes);  // the bytes the PNG gets
   s.present(false);
   while (s.save) s.present(false);  // S was pressed: draw again, since the back buffer was swapped
   if (s.stop && !s.said_stop) {
-    std::printf("window: stopped after %d spp\n", spp);
+    std::printf("window: stopped after %d %s\n", count, s.unit.c_str());
     s.said_stop = true;
   }
   return !s.stop;
@@ -263,7 +262,7 @@ ZRAKA_PREVIEW_FN preview_window::~preview_window() {
 
 namespace zraka {
 struct preview_window::state {};
-ZRAKA_PREVIEW_FN preview_window::preview_window(const program_options& opt, int, int, const image*,
+ZRAKA_PREVIEW_FN preview_window::preview_window(const program_options& opt, int, int, const image*, const char*,
                                                 const std::filesystem::path&) {
   if (opt.window) throw error("--window: this zraka was built without GLFW and libepoxy (tools/setup.sh installs them)");
 }

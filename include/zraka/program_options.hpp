@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -46,6 +47,8 @@ ZRAKA_COMPILED_FN std::filesystem::path output_file_in(const std::filesystem::pa
                                                        const std::filesystem::path& folder);
 ZRAKA_COMPILED_FN std::filesystem::path input_file_in(const std::filesystem::path& name,
                                                       const std::filesystem::path& folder);
+// --window needs an X display: without one, an error that says so, before any work is done.
+ZRAKA_COMPILED_FN void check_window_display();
 }  // namespace detail
 
 // Where a relative output name goes: <checkout>/build/out/ when the program runs inside the
@@ -176,6 +179,13 @@ ZRAKA_COMPILED_FN std::filesystem::path detail::input_file_in(const std::filesys
   return name;
 }
 
+ZRAKA_COMPILED_FN void detail::check_window_display() {
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+    throw error("--window needs an X display, and DISPLAY is not set; run it under a virtual one "
+                "(xvfb-run -a ... --window --window-screenshot shot.png) or leave out --window");
+}
+
 ZRAKA_COMPILED_FN program_options::program_options(std::string description, take options)
     : app(description), taken_(options) {
   app.always_capture_default();  // --help shows every default, the chapter's own too
@@ -200,6 +210,7 @@ ZRAKA_COMPILED_FN std::optional<int> program_options::parse_shared(int argc, cha
       if (std::filesystem::path(window_screenshot).extension() != ".png")
         throw error("--window-screenshot " + window_screenshot + ": must be a .png file");
     }
+    if (window) detail::check_window_display();
     if (!scene_settings) check();
   } catch (const error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
