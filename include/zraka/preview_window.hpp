@@ -70,6 +70,7 @@ class preview_window {
 #include <zraka/gl.hpp>
 #include <zraka/image_error.hpp>
 #include <zraka/image_io.hpp>
+#include <zraka/stopwatch.hpp>
 
 #include <stb/stb_easy_font.h>  // a tiny stroke font as axis-aligned quads (Debian's libstb-dev)
 
@@ -104,7 +105,8 @@ struct preview_window::state {
   std::string bytes;                // the last mean, 8-bit sRGB as written to PNG
   std::vector<std::uint8_t> frame;  // the window's pixels, rows bottom to top (OpenGL's order)
   std::vector<char> quads;          // the font's output
-  int count = 0, shots = 0;
+  int count = 0, shots = 0, passes = 0;
+  double busy = 0;  // seconds spent showing passes: inside the render's measured time
   double seconds = 0, error = std::numeric_limits<double>::quiet_NaN();
   bool stop = false, save = false, said_stop = false;
 
@@ -224,6 +226,7 @@ ZRAKA_PREVIEW_FN preview_window::preview_window(const program_options& opt, int 
 
 ZRAKA_PREVIEW_FN bool preview_window::show_pass(const image& mean, int count, double seconds) {
   state& s = *s_;
+  const stopwatch clock;
   s.count = count, s.seconds = seconds;
   if (s.reference) s.error = rmse(mean, *s.reference);
   detail::encode_8bit(mean, s.bytes);  // the bytes the PNG gets
@@ -233,14 +236,18 @@ ZRAKA_PREVIEW_FN bool preview_window::show_pass(const image& mean, int count, do
     std::printf("window: stopped after %d %s\n", count, s.unit.c_str());
     s.said_stop = true;
   }
+  s.busy += clock.seconds(), ++s.passes;
   return !s.stop;
 }
 
 ZRAKA_PREVIEW_FN preview_window::~preview_window() {
   // The last image stays until the user closes the window, unless they stopped the render there
   // (or a screenshot file says this is a scripted run, or an error is on its way out).
-  if (!s_ || s_->stop || !s_->screenshot_every_pass.empty() || std::uncaught_exceptions() > 0 || s_->bytes.empty())
-    return;
+  if (!s_) return;
+  if (s_->passes > 0)
+    std::printf("window: %d passes shown in %.3f s (%.1f ms each, counted in the render's seconds)\n", s_->passes,
+                s_->busy, 1e3 * s_->busy / s_->passes);
+  if (s_->stop || !s_->screenshot_every_pass.empty() || std::uncaught_exceptions() > 0 || s_->bytes.empty()) return;
   try {
     state& s = *s_;
     std::printf("window: done; Q or Escape closes it\n");
