@@ -3,7 +3,7 @@
 // zraka_pathtrace_main and called with it.
 //
 // Rendering is cut short here, not in the chapter: render_progressive in that main() is replaced,
-// by a macro, with small_render below, which refuses images above 32x32 pixels (a zraka::error,
+// by a macro, with small_render below (and --window, preview_window, with no_window, which refuses it), which refuses images above 32x32 pixels (a zraka::error,
 // as the program's own refusals are) and renders at most 2 samples per pixel. Everything before
 // the render (parsing, scene loading, validation) and after it (reports, PNG/PFM writing) runs as
 // in the real program.
@@ -24,6 +24,7 @@
 #include <zraka/lights.hpp>
 #include <zraka/path.hpp>
 #include <zraka/pixel_sampling.hpp>
+#include <zraka/preview_window.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/progressive.hpp>
 #include <zraka/scene_argument.hpp>
@@ -51,13 +52,24 @@ zraka::image small_render(int width, int height, zraka::progressive_options opt,
   return zraka::render_progressive(width, height, opt, fn, on_pass, totals_out);
 }
 
+// --window would open a window (and wait for a key) wherever DISPLAY is set: the harness has none
+// to offer, so the window is replaced by one that refuses it, as the program does without a display.
+struct no_window {
+  no_window(const zraka::program_options& opt, int, int, const zraka::image* = nullptr) {
+    if (opt.window) throw zraka::error("fuzz harness: no --window");
+  }
+  bool show(const zraka::image&, int, double) { return true; }
+};
+
 }  // namespace zraka_fuzz
 
+#define preview_window zraka_fuzz::no_window
 #define render_progressive zraka_fuzz::small_render
 #define main zraka_pathtrace_main
 #include "chapters/2.3-pathtrace/main.cpp"
 #undef main
 #undef render_progressive
+#undef preview_window
 
 namespace {
 

@@ -107,6 +107,9 @@ for m in naive nee mis; do
   "$bin/pathtrace" --scene cornell-glass --width 64 --height 64 --centre --spp 1024 --integrator $m \
     --reference ref.pfm --report 2.3-$m.csv --out 2.3-$m.png >/dev/null
 done
+# The live preview (--window) under a virtual display: the window after the last pass.
+"${xvfb[@]}" "$bin/pathtrace" --scene cornell-glass --width 64 --height 64 --centre --spp 256 --reference ref.pfm \
+  --window --window-screenshot 2.3-window.png --out 2.3-window-image.png >/dev/null && cp 2.3-window.png "$fig/"
 "$bin/results" --tile 80 --spp-sweep 1,8,64,512 --depth-spp 256 --conv-spp 512 --ref-spp 2048 >/dev/null
 cp 4.2-samples.png 4.2-depth.png "$fig/"
 plot 2.3-{naive,nee,mis}.csv -o "$fig/2.3-error.png" --labels "naive,nee,mis" \

@@ -5,6 +5,7 @@
 // passes that double the samples per pixel; with --reference it prints, after every pass, the
 // error against that image and the time so far (error against run time), and --report writes the
 // same table as CSV for tools/plot_convergence.py. --time-budget stops the doubling early.
+// --window shows the image as the passes finish (preview_window.hpp).
 //
 // Scenes (--scene): a name from named_scenes.hpp, among them the Cornell boxes (cornell,
 // cornell-glass, cornell-spheres; scenes/cornell*.yaml hold the same) and `furnace`, a camera
@@ -17,6 +18,7 @@
 #include <zraka/mitsuba_export.hpp>
 #include <zraka/path.hpp>
 #include <zraka/pixel_sampling.hpp>
+#include <zraka/preview_window.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/progressive.hpp>
 #include <zraka/scene_argument.hpp>
@@ -29,7 +31,7 @@ using namespace zraka;
 
 int main(int argc, char** argv) {
   program_options opt{"Chapter 2.3: path tracing with the naive, nee or mis integrator, error against run time",
-                      take::scene | take::image | take::depth};
+                      take::scene | take::image | take::depth | take::window};
   opt.scene_names = named_scene_list();
   opt.scene = "cornell-glass", opt.out = "pathtrace.png", opt.scene_settings = true;
   opt.min_depth = 0, opt.max_depth = 1000;
@@ -93,8 +95,10 @@ int main(int argc, char** argv) {
     convergence_log log("error of " + scene_name + " (" + name(io.method) + ") against " + reference,
                         {"rmse", "relmse"}, "rmse", "spp");
     progressive_totals tot;
+    preview_window preview(opt, W, H, ref ? &*ref : nullptr);  // --window: the passes as they finish
     const image img = render_progressive(W, H, po, sample, [&](const image& mean, const progressive_totals& t) {
       if (ref) log.add(std::uint64_t(t.spp), t.seconds, {rmse(mean, *ref), relmse(mean, *ref)});
+      return preview.show(mean, t.spp, t.seconds);  // false: stopped in the window
     }, &tot);
     // [end]
 

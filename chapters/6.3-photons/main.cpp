@@ -9,6 +9,7 @@
 //      over a window on the caustic;
 //   3. two-pass photon mapping (photon_mapping.hpp: global and caustic maps, final gathering)
 //      with a fixed radius: its error stops falling when its bias is reached.
+// --window shows the SPPM estimate of part 1 after every doubling of its passes (preview_window.hpp).
 #include <zraka/cornell.hpp>
 #include <zraka/convergence.hpp>
 #include <zraka/error.hpp>
@@ -16,6 +17,7 @@
 #include <zraka/image_io.hpp>
 #include <zraka/path.hpp>
 #include <zraka/photon_mapping.hpp>
+#include <zraka/preview_window.hpp>
 #include <zraka/progressive.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/render.hpp>
@@ -106,7 +108,7 @@ image reference_of(const scene& sc, int spp, std::uint64_t seed, const render_op
 
 int main(int argc, char** argv) {
   program_options cli{"Chapter 6.3: photon mapping - SPPM error against time vs mis, caustics, global + caustic maps (--spp: SPPM passes)",
-                      take::image | take::scene};
+                      take::image | take::scene | take::window};
   cli.width = 32, cli.height = 32, cli.spp = 64, cli.out = "photons.png";
   std::uint64_t photons = 5000;
   double radius = 0.08, alpha = 2.0 / 3.0;
@@ -150,6 +152,7 @@ int main(int argc, char** argv) {
     std::printf("%s\n%8s %10s %8s %9s %8s\n", s.lights().describe().c_str(), "passes", "photons", "radius", "rmse",
                 "seconds");
     const stopwatch clock;
+    preview_window preview(cli, cli.width, cli.height, &reference, "passes");  // --window: each estimate
     for (int next = 1; s.passes() < cli.spp;) {
       while (s.passes() < next) s.run_pass();
       const image est = s.estimate();
@@ -158,6 +161,7 @@ int main(int argc, char** argv) {
       std::printf("%8d %10llu %8.4f %9.5f %8.3f\n", s.passes(), static_cast<unsigned long long>(s.photons_emitted()),
                   r.values[1], r.values[0], r.seconds);
       next = std::min(cli.spp, next * 2);
+      if (!preview.show(est, s.passes(), r.seconds)) break;  // stopped in the window
     }
     const double sppm_seconds = log.rows().back().seconds;
     const image sppm_image = s.estimate();

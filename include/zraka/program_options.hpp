@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -32,6 +33,7 @@ namespace zraka {
 // Which shared options a program takes (combine with |).
 enum class take : unsigned {
   none = 0, size = 1, spp = 2, depth = 4, seed = 8, threads = 16, out = 32, scene = 64,
+  window = 128,  // --window, --window-screenshot: a progressive render shown as it goes (preview_window.hpp)
   image = 1 | 2 | 8 | 16 | 32,  // a rendering program: size, spp, seed, threads, out
 };
 constexpr take operator|(take a, take b) { return take(unsigned(a) | unsigned(b)); }
@@ -45,6 +47,8 @@ ZRAKA_COMPILED_FN std::filesystem::path output_file_in(const std::filesystem::pa
                                                        const std::filesystem::path& folder);
 ZRAKA_COMPILED_FN std::filesystem::path input_file_in(const std::filesystem::path& name,
                                                       const std::filesystem::path& folder);
+// --window needs an X display: without one, an error that says so, before any work is done.
+ZRAKA_COMPILED_FN void check_window_display();
 }  // namespace detail
 
 // Where a relative output name goes: <checkout>/build/out/ when the program runs inside the
@@ -83,6 +87,8 @@ struct program_options {
   std::string scene_names;        // for --help: named_scene_list() (this header needs no scene types)
   // true: size, spp, depth and seed default to the scene's own settings (apply_to); --help says so.
   bool scene_settings = false;
+  bool window = false;            // --window
+  std::string window_screenshot;  // --window-screenshot FILE
 
   cli_app app;  // the program's own options: app.add_option("--name", value, "help")
 
@@ -92,6 +98,7 @@ struct program_options {
   std::optional<int> parse(int argc, char** argv) {
     if (const auto done = parse_shared(argc, argv)) return done;
     if (has(taken_, take::out)) out = output_file(out).string();  // here: it needs the resource root
+    if (!window_screenshot.empty()) window_screenshot = output_file(window_screenshot).string();
     return std::nullopt;
   }
 
@@ -172,6 +179,13 @@ ZRAKA_COMPILED_FN std::filesystem::path detail::input_file_in(const std::filesys
   return name;
 }
 
+ZRAKA_COMPILED_FN void detail::check_window_display() {
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+    throw error("--window needs an X display, and DISPLAY is not set; run it under a virtual one "
+                "(xvfb-run -a ... --window --window-screenshot shot.png) or leave out --window");
+}
+
 ZRAKA_COMPILED_FN program_options::program_options(std::string description, take options)
     : app(description), taken_(options) {
   app.always_capture_default();  // --help shows every default, the chapter's own too
@@ -190,6 +204,13 @@ ZRAKA_COMPILED_FN std::optional<int> program_options::parse_shared(int argc, cha
       for (const std::string& t : out_types) known |= ext == t, list += (list.empty() ? "" : ", ") + t;
       if (!known) throw error("--out " + out + ": unknown image type '" + ext + "' (use " + list + ")");
     }
+    if (!window_screenshot.empty()) {
+      if (!window) throw error("--window-screenshot needs --window");
+      check_output_name(window_screenshot);
+      if (std::filesystem::path(window_screenshot).extension() != ".png")
+        throw error("--window-screenshot " + window_screenshot + ": must be a .png file");
+    }
+    if (window) detail::check_window_display();
     if (!scene_settings) check();
   } catch (const error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
@@ -231,6 +252,12 @@ ZRAKA_COMPILED_FN void program_options::add_shared() {
     for (const std::string& t : out_types) types += (types.empty() ? "" : ", ") + t;
     app.add_option("--out", out, "output file; its extension (" + types +
                                      ") picks the format; a bare name run inside the checkout goes to build/out/");
+  }
+  if (has(taken_, take::window)) {
+    app.add_flag("--window", window, "show the image in a window after every pass, with spp, seconds and the "
+                                     "error; S saves a screenshot, Q or Escape stops after the pass (needs a display)");
+    app.add_option("--window-screenshot", window_screenshot, "with --window: save the window as this .png after every "
+                                                             "pass, and close it at the end (for scripts and tests)");
   }
 }
 }  // namespace zraka
