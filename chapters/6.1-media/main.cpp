@@ -20,10 +20,12 @@
 //     reference rendered in the same run by delta tracking with --ref-spp samples and another
 //     seed (so its noise is independent). Here the noise of the light transport hides the bias
 //     at every step in these sample counts: the page says what that means.
+// --window shows each image of table 2 as it is rendered (preview_window.hpp).
 #include <zraka/error.hpp>
 #include <zraka/image_error.hpp>
 #include <zraka/image_io.hpp>
 #include <zraka/path.hpp>
+#include <zraka/preview_window.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/render.hpp>
 #include <zraka/scene_argument.hpp>
@@ -91,7 +93,7 @@ double image_mean(const image& a) {
 
 int main(int argc, char** argv) {
   program_options cli{"Chapter 6.1: participating media - ray marching at several steps against delta tracking",
-                      take::image | take::scene};
+                      take::image | take::scene | take::window};
   cli.width = 32, cli.height = 32, cli.spp = 16, cli.out = "media.png", cli.scene = "fog-cornell";
   int ref_spp = 192;
   std::vector<double> steps{0.5, 0.2, 0.05};
@@ -161,21 +163,26 @@ int main(int argc, char** argv) {
     std::uint64_t nonfinite = 0;
     std::vector<double> last_rmse;
     image figure;
+    preview_window preview(cli, cli.width, cli.height, &ref.img);  // --window: each image of the table
+    bool stopped = false;
     for (const row& w : rows) {
       double rmse_last = 0;
-      for (int n = 1; n <= cli.spp; n *= 4) {
+      for (int n = 1; n <= cli.spp && !stopped; n *= 4) {
         const run_result r = draw(sc, w.est, w.step, n, cli.seed, cli.width, cli.height, ro);
         nonfinite += r.stats.nonfinite;
         rmse_last = rmse(r.img, ref.img);
         std::printf("%-12s %6d %10.3f %10.5f %+12.5f\n", w.name.c_str(), n, r.stats.seconds, rmse_last,
                     image_mean(r.img) - image_mean(ref.img));
-        if (w.est == media_estimator::delta && n * 4 > cli.spp) figure = r.img;
+        if (w.est == media_estimator::delta) figure = r.img;  // at the largest spp in the end
+        stopped = !preview.show(r.img, n, r.stats.seconds);  // stopped in the window
       }
+      if (stopped) break;
       last_rmse.push_back(rmse_last);
     }
     // [end]
-    std::printf("\nat the largest spp: delta RMSE %.5f", last_rmse[0]);
-    for (std::size_t i = 1; i < rows.size(); ++i)
+    if (stopped) std::printf("stopped in the window\n");
+    if (!last_rmse.empty()) std::printf("\nat the largest spp: delta RMSE %.5f", last_rmse[0]);
+    for (std::size_t i = 1; i < last_rmse.size(); ++i)
       std::printf("; %s %.5f (%.2fx delta's)", rows[i].name.c_str(), last_rmse[i], last_rmse[i] / last_rmse[0]);
     std::printf("\n%llu NaN/inf samples\n", (unsigned long long)nonfinite);
     write_image(figure, cli.out);

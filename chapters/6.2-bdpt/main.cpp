@@ -10,6 +10,7 @@
 // --strategies N also writes the weighted image of every strategy of path length 1..N as a grid
 // (row k = path length, column s = light vertices), so a student sees which strategy carries
 // which light.
+// --window shows bdpt | mis after each doubling of the samples (preview_window.hpp).
 #include <zraka/bdpt.hpp>
 #include <zraka/convergence.hpp>
 #include <zraka/error.hpp>
@@ -17,6 +18,7 @@
 #include <zraka/image_io.hpp>
 #include <zraka/input_file.hpp>
 #include <zraka/path.hpp>
+#include <zraka/preview_window.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/reference.hpp>
 #include <zraka/render.hpp>
@@ -50,7 +52,7 @@ image strategy_grid(const std::vector<image>& strategies, int K, int W, int H) {
 
 int main(int argc, char** argv) {
   program_options cli{"Chapter 6.2: bidirectional path tracing against path tracing with MIS",
-                      take::image | take::scene | take::depth};
+                      take::image | take::scene | take::depth | take::window};
   cli.scene_names = named_scene_list();
   cli.scene = "caustic-box", cli.out = "bdpt.png";
   cli.width = 48, cli.height = 48, cli.spp = 8, cli.depth = 8;
@@ -97,17 +99,23 @@ int main(int argc, char** argv) {
     convergence_log log_m("mis on " + cli.scene, {"rmse", "relmse"}, "relmse", "spp");
     image last_b, last_m;
     std::vector<image> grid_images;
+    const image both_ref = side_by_side({reference, reference});
+    preview_window preview(cli, both_ref.width, H, &both_ref);  // --window: bdpt | mis after each run
+    double shown_seconds = 0;
     for (int spp = 1; spp <= cli.spp; spp *= 2) {
       bo.strategy_length = spp == cli.spp ? strategies : 0;
-      const bdpt_render_t b = render_bdpt(sc, spp, cli.seed, bo);
+      bdpt_render_t b = render_bdpt(sc, spp, cli.seed, bo);
       render_stats ms;
-      const image m = render_mis(sc, spp, cli.seed, po, ro, ms);
+      image m = render_mis(sc, spp, cli.seed, po, ro, ms);
       bad += b.stats.nonfinite + ms.nonfinite;
       log_b.add(std::uint64_t(spp), b.stats.seconds, error_of(b.img));
       log_m.add(std::uint64_t(spp), ms.seconds, error_of(m));
-      if (spp == cli.spp) last_b = b.img, last_m = m, grid_images = b.strategies;
+      shown_seconds += b.stats.seconds + ms.seconds;
+      last_b = std::move(b.img), last_m = std::move(m), grid_images = std::move(b.strategies);
+      if (!preview.show(side_by_side({last_b, last_m}), spp, shown_seconds)) break;  // stopped in the window
     }
     // [end]
+    const int done_spp = int(log_b.rows().back().n);  // cli.spp unless stopped in the window
 
     std::printf("\nerror against the reference, its own noise taken out [seconds]\n%6s %32s %32s\n", "spp",
                 "bdpt: rmse relmse", "mis: rmse relmse");
@@ -140,16 +148,19 @@ int main(int argc, char** argv) {
     write_image(fig, cli.out);
     log_b.write_csv(cli.sibling("-bdpt", ".csv"));
     log_m.write_csv(cli.sibling("-mis", ".csv"));
-    std::printf("wrote %s (bdpt, mis at %d spp, reference), %s, %s\n", cli.out.c_str(), cli.spp,
+    std::printf("wrote %s (bdpt, mis at %d spp, reference), %s, %s\n", cli.out.c_str(), done_spp,
                 cli.sibling("-bdpt", ".csv").c_str(), cli.sibling("-mis", ".csv").c_str());
-    if (strategies > 0) {
+    if (strategies > 0 && done_spp < cli.spp)
+      std::printf("%s not written: stopped in the window before the %d-spp run\n", cli.sibling("-strategies").c_str(),
+                  cli.spp);
+    else if (strategies > 0) {
       write_image(strategy_grid(grid_images, strategies, W, H), cli.sibling("-strategies"));
       std::printf("wrote %s: row k = path length 1..%d, column s = 0..k light vertices (t = k + 1 - s); "
                   "(1, 1) is left out (the camera path finds visible lights)\n",
                   cli.sibling("-strategies").c_str(), strategies);
     }
     std::printf("summary: %s %dx%d, %d spp: relMSE bdpt %.5f in %.2f s, mis %.5f in %.2f s; %llu NaN/inf samples\n",
-                cli.scene.c_str(), W, H, cli.spp, rb.values[1], rb.seconds, rm.values[1], rm.seconds,
+                cli.scene.c_str(), W, H, done_spp, rb.values[1], rb.seconds, rm.values[1], rm.seconds,
                 static_cast<unsigned long long>(bad));
     return 0;
   });

@@ -8,6 +8,7 @@
 // time against a long `mis` reference (reference.hpp: two cached halves, whose difference takes
 // the reference's own noise out of the errors), then the bootstrap's normalisation and the
 // acceptance rates. From the largest run, relMSE x seconds is each method's cost.
+// --window shows mlt | bdpt | mis after each doubling (preview_window.hpp).
 #include <zraka/bdpt.hpp>
 #include <zraka/convergence.hpp>
 #include <zraka/error.hpp>
@@ -15,6 +16,7 @@
 #include <zraka/image_io.hpp>
 #include <zraka/metropolis.hpp>
 #include <zraka/path.hpp>
+#include <zraka/preview_window.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/reference.hpp>
 #include <zraka/render.hpp>
@@ -32,7 +34,7 @@ using namespace zraka;
 int main(int argc, char** argv) {
   program_options cli{"Chapter 6.4: Metropolis light transport (PSSMLT) against BDPT and path tracing with MIS "
                       "(--spp: mutations per pixel of the largest run)",
-                      take::image | take::scene | take::depth};
+                      take::image | take::scene | take::depth | take::window};
   cli.scene_names = named_scene_list();
   cli.scene = "scenes/ajar-door.yaml", cli.out = "metropolis.png";
   cli.width = 64, cli.height = 48, cli.spp = 32, cli.depth = 8;
@@ -79,24 +81,34 @@ int main(int argc, char** argv) {
     convergence_log log_m("mis on " + cli.scene, {"rmse", "relmse"}, "relmse", "spp");
     image last_mlt, last_b, last_m;
     metropolis_render_t last;
+    const image refs = side_by_side(std::vector<image>(no_bdpt ? 2 : 3, ref.img));
+    preview_window preview(cli, refs.width, H, &refs, "per pixel");  // --window: each run, side by side
+    double shown_seconds = 0;
     for (int n = 1; n <= cli.spp; n *= 2) {
       const std::uint64_t M = std::uint64_t(n) * std::uint64_t(W) * std::uint64_t(H);
       mo.bootstrap = std::max<std::uint64_t>(1024, std::uint64_t(bootstrap * double(M)));
-      const metropolis_render_t mlt = render_metropolis(sc, po, std::uint64_t(n), cli.seed, mo);
+      metropolis_render_t mlt = render_metropolis(sc, po, std::uint64_t(n), cli.seed, mo);
       log_mlt.add(std::uint64_t(n), mlt.seconds, ref.errors_of(mlt.img));
       render_stats ms;
-      const image m = render_mis(sc, n, cli.seed, po, ro, ms);
+      image m = render_mis(sc, n, cli.seed, po, ro, ms);
       log_m.add(std::uint64_t(n), ms.seconds, ref.errors_of(m));
       bad += mlt.nonfinite + ms.nonfinite;
+      shown_seconds += mlt.seconds + ms.seconds;
       if (!no_bdpt) {
-        const bdpt_render_t b = render_bdpt(sc, n, cli.seed, bo);
+        bdpt_render_t b = render_bdpt(sc, n, cli.seed, bo);
         log_b.add(std::uint64_t(n), b.stats.seconds, ref.errors_of(b.img));
         bad += b.stats.nonfinite;
-        if (n == cli.spp) last_b = b.img;
+        shown_seconds += b.stats.seconds;
+        last_b = std::move(b.img);
       }
-      if (n == cli.spp) last_mlt = mlt.img, last_m = m, last = mlt;
+      last_mlt = mlt.img, last_m = std::move(m), last = std::move(mlt);
+      std::vector<image> shown{last_mlt};
+      if (!no_bdpt) shown.push_back(last_b);
+      shown.push_back(last_m);
+      if (!preview.show(side_by_side(shown), n, shown_seconds)) break;  // stopped in the window
     }
     // [end]
+    const int done_n = int(log_m.rows().back().n);  // cli.spp unless stopped in the window
 
     std::printf("\nerror against the reference, its own noise taken out [seconds]\n%6s %32s %32s %32s\n", "n",
                 "mlt: rmse relmse", "bdpt: rmse relmse", "mis: rmse relmse");
@@ -116,7 +128,7 @@ int main(int argc, char** argv) {
     std::printf("mis:  %s\n", log_m.slope_line().c_str());
     std::printf("\nmetropolis at %d mutations per pixel: %llu mutations in %d chains, sigma %.4g, large steps %.2f; "
                 "bootstrap %llu samples in %.3f s, b = %.6g; acceptance %.3f (small steps %.3f, large steps %.3f)\n",
-                cli.spp, static_cast<unsigned long long>(last.mutations), mo.chains, mo.pss.sigma,
+                done_n, static_cast<unsigned long long>(last.mutations), mo.chains, mo.pss.sigma,
                 mo.pss.large_step_prob, static_cast<unsigned long long>(mo.bootstrap), last.bootstrap_seconds, last.b,
                 last.acceptance, last.small_acceptance, last.large_acceptance);
 
@@ -152,10 +164,10 @@ int main(int argc, char** argv) {
     if (!no_bdpt) log_b.write_csv(cli.sibling("-bdpt", ".csv"));
     log_m.write_csv(cli.sibling("-mis", ".csv"));
     std::printf("wrote %s (mlt, %smis at %d per pixel, reference), %s\n", cli.out.c_str(), no_bdpt ? "" : "bdpt, ",
-                cli.spp, cli.sibling("-{mlt,bdpt,mis}", ".csv").c_str());
+                done_n, cli.sibling("-{mlt,bdpt,mis}", ".csv").c_str());
     std::printf("summary: %s %dx%d, %d per pixel: relMSE mlt %.5f in %.2f s, mis %.5f in %.2f s; acceptance %.3f; "
                 "%llu NaN/inf samples\n",
-                cli.scene.c_str(), W, H, cli.spp, log_mlt.rows().back().values[1], log_mlt.rows().back().seconds,
+                cli.scene.c_str(), W, H, done_n, log_mlt.rows().back().values[1], log_mlt.rows().back().seconds,
                 log_m.rows().back().values[1], log_m.rows().back().seconds, last.acceptance,
                 static_cast<unsigned long long>(bad));
     return 0;

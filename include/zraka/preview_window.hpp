@@ -113,7 +113,7 @@ struct preview_window::state {
   state(const program_options& opt, int w, int h, const image* ref, const char* what, const std::filesystem::path& root)
       : width(w), height(h), reference(ref), unit(what), screenshot_every_pass(opt.window_screenshot),
         screenshot_stem(window_stem(opt.out)) {
-    zoom = std::max(1, 384 / std::max(w, h));  // small test renders are shown large
+    zoom = std::max(1, std::min(768 / w, 384 / h));  // small test renders (and rows of them) are shown large
     if (const GLFWvidmode* mode = glfwGetVideoMode(glfwGetPrimaryMonitor())) {  // larger than the screen: shrunk
       const int room_w = mode->width, room_h = std::max(1, mode->height - bar);
       if (w * zoom > room_w || h * zoom > room_h)
@@ -245,7 +245,7 @@ ZRAKA_PREVIEW_FN preview_window::~preview_window() {
   // (or a screenshot file says this is a scripted run, or an error is on its way out).
   if (!s_) return;
   if (s_->passes > 0)
-    std::printf("window: %d passes shown in %.3f s (%.1f ms each, counted in the render's seconds)\n", s_->passes,
+    std::printf("window: %d passes shown in %.3f s (%.1f ms each)\n", s_->passes,
                 s_->busy, 1e3 * s_->busy / s_->passes);
   if (s_->stop || !s_->screenshot_every_pass.empty() || std::uncaught_exceptions() > 0 || s_->bytes.empty()) return;
   try {
