@@ -20,8 +20,8 @@
 # user really gets it. A target with its own flags (a sanitizer build of a few targets, the
 # fuzzers) must not be given these PCHs; a project-wide flag is fine (the hosts get it too).
 #
-# Not given a PCH, on purpose: the per-header self-containedness units (tests/CMakeLists.txt,
-# zraka_self_contained: a PCH would hide a missing #include) and doctest's main (zraka_test_main:
+# Not given a PCH, on purpose: the per-header self-containedness check (tests/CMakeLists.txt,
+# headers.self_contained: a PCH would hide a missing #include) and doctest's main (zraka_test_main:
 # it defines DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN before including doctest).
 #
 # ccache: works with these PCHs given CCACHE_SLOPPINESS=pch_defines,time_macros (BRIEF.md's

@@ -9,6 +9,7 @@
 #include <zraka/bvh.hpp>
 #include <zraka/camera.hpp>
 #include <zraka/cornell.hpp>
+#include <zraka/gpu_scene.hpp>
 #include <zraka/lights.hpp>
 #include <zraka/material.hpp>
 #include <zraka/media.hpp>

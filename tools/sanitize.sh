@@ -5,7 +5,7 @@
 # -O1 keeps the build and the runs short; without NDEBUG, so assert() checks too.
 # Usage: bash tools/sanitize.sh [ctest arguments, e.g. -R scene]      (tools/test.sh runs it)
 # Not run here: the book's text checks and the install tests (labels book, install), which test
-# no compiled code of ours, the address-space test (label hostile, see below), and the course flow (label course), which re-runs the chapters at their
+# no compiled code of ours, the headers check (label headers: the compiler front end only), the address-space test (label hostile, see below), and the course flow (label course), which re-runs the chapters at their
 # defaults and the pages' long commands: under the sanitizers that takes many minutes, and the
 # chapter smoke tests, which do run here, exercise the same programs. Leaks inside the OpenCL driver are suppressed by tools/lsan.supp.
 set -euo pipefail
@@ -24,5 +24,5 @@ cd build-sanitize
 gl='^(chapter\.(3\.2-|4\.3-realtime)|preview\.window)'
 # hostile.inputs runs its programs under an address-space limit, which ASan's shadow memory
 # (terabytes of reserved addresses) cannot live under: it runs in the normal build only.
-ctest --output-on-failure -j "$(nproc)" -LE '^(book|install|course|hostile|bench)$' -E "$gl" "$@"
+ctest --output-on-failure -j "$(nproc)" -LE '^(book|install|course|hostile|bench|headers)$' -E "$gl" "$@"
 ASAN_OPTIONS=$ASAN_OPTIONS:detect_leaks=0 ctest --output-on-failure -j "$(nproc)" -R "$gl" "$@"

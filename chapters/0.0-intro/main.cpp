@@ -10,10 +10,13 @@
 #include <zraka/cli.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <regex>
+#include <optional>
+#include <system_error>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -27,16 +30,30 @@ struct chapter {
 };
 
 // [listing folders]
+// "<N>.<M>-<slug>" with a slug of lowercase letters, digits and dashes: the chapter it names.
+std::optional<chapter> parse_folder(const std::string& folder) {
+  chapter c{0, 0, folder, ""};
+  const char *p = folder.data(), *end = p + folder.size();
+  auto number = [&](int& v) {
+    const auto r = std::from_chars(p, end, v);
+    const bool ok = r.ec == std::errc() && r.ptr != p && *p != '-' && *p != '+';
+    p = r.ptr;
+    return ok;
+  };
+  if (!number(c.major) || p == end || *p++ != '.' || !number(c.minor) || p == end || *p++ != '-' || p == end)
+    return std::nullopt;
+  c.slug.assign(p, end);
+  for (char ch : c.slug)
+    if (!((ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '-')) return std::nullopt;
+  return c;
+}
+
 // Every folder <N.M>-<slug>/ holding a main.cpp, in course order (numbers compared as numbers).
 std::vector<chapter> find_chapters(const fs::path& dir) {
-  static const std::regex name(R"(([0-9]+)\.([0-9]+)-([a-z0-9-]+))");
   std::vector<chapter> found;
   for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string folder = entry.path().filename().string();
-    std::smatch m;
-    if (entry.is_directory() && std::regex_match(folder, m, name) &&
-        fs::exists(entry.path() / "main.cpp"))
-      found.push_back({std::stoi(m[1]), std::stoi(m[2]), folder, m[3]});
+    const auto c = parse_folder(entry.path().filename().string());
+    if (c && entry.is_directory() && fs::exists(entry.path() / "main.cpp")) found.push_back(*c);
   }
   std::sort(found.begin(), found.end(), [](const chapter& a, const chapter& b) {
     return std::tie(a.major, a.minor, a.slug) < std::tie(b.major, b.minor, b.slug);

@@ -20,6 +20,7 @@
 #include <zraka/preview_window.hpp>
 #include <zraka/progressive.hpp>
 #include <zraka/program_options.hpp>
+#include <zraka/reference.hpp>  // render_mis: the path tracer of 2.3, as the part-6 references
 #include <zraka/render.hpp>
 #include <zraka/scene_argument.hpp>
 #include <zraka/sppm.hpp>
@@ -59,20 +60,6 @@ double window_rmse(const image& a, const image& ref, const window& w) {
 image reference_of(const scene& sc, int spp, std::uint64_t seed, const render_options& ro, double& noise,
                    double& seconds);
 
-// mis with jittered pixels, seed of its own.
-image render_mis(const scene& sc, int spp, std::uint64_t seed, const render_options& ro, render_stats* st = nullptr) {
-  const path_tracer tracer(sc, path_options{});
-  const auto cam = sc.prepared_camera();
-  const int W = sc.settings.width, H = sc.settings.height;
-  image img(W, H);
-  const render_stats s = render(img, spp, seed, [&](sample_context& c) {
-    const vec2 u = c.random.uniform2();
-    return tracer(cam.generate((c.x + u.x) / W, (c.y + u.y) / H), c.random, c.rays);
-  }, ro);
-  if (st) *st = s;
-  return img;
-}
-
 // mis, doubling its samples until `seconds` would be overrun: the equal-time competitor.
 image mis_for(const scene& sc, double seconds, std::uint64_t seed, const render_options& ro, int& spp_out) {
   const path_tracer tracer(sc, path_options{});
@@ -95,8 +82,8 @@ image mis_for(const scene& sc, double seconds, std::uint64_t seed, const render_
 image reference_of(const scene& sc, int spp, std::uint64_t seed, const render_options& ro, double& noise,
                    double& seconds) {
   render_stats a, b;
-  const image ha = render_mis(sc, std::max(1, spp / 2), seed ^ 0x5eed5eed5eedull, ro, &a);
-  const image hb = render_mis(sc, std::max(1, spp / 2), seed ^ 0xfeedfeedfeedull, ro, &b);
+  const image ha = render_mis(sc, std::max(1, spp / 2), seed ^ 0x5eed5eed5eedull, path_options{}, ro, a);
+  const image hb = render_mis(sc, std::max(1, spp / 2), seed ^ 0xfeedfeedfeedull, path_options{}, ro, b);
   image ref(ha.width, ha.height);
   for (std::size_t i = 0; i < ref.pixels.size(); ++i) ref.pixels[i] = (ha.pixels[i] + hb.pixels[i]) * 0.5f;
   noise = rmse(ha, hb) / 2;

@@ -10,6 +10,7 @@
 // follow the same pattern under their own macros, ZRAKA_COMPILED_SCENE_FILE and
 // ZRAKA_COMPILED_MESH_FILE, defined when zraka was built with yaml-cpp and assimp, and so does the
 // preview window of --window (preview_window.hpp, ZRAKA_COMPILED_PREVIEW, with GLFW and libepoxy).
+// Part 6's mis reference (reference.hpp) is compiled with the scene files, in src/reference.cpp.
 // Their functions are marked ZRAKA_COMPILED_FN:
 //   - linking the library zraka::compiled (src/compiled.cpp, built and installed with zraka) defines
 //     ZRAKA_COMPILED: the headers only declare them, the library holds them, compiled once;

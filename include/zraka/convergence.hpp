@@ -57,12 +57,8 @@ class convergence_log {
   }
 
   // `columns` name the values of each row; `fit_column` is the error the slope is fitted to.
-  explicit convergence_log(std::string title, std::vector<std::string> columns = integral_columns(),
-                           std::string fit_column = "abs_error", std::string n_name = "n")
-      : title_(std::move(title)), n_name_(std::move(n_name)), columns_(std::move(columns)),
-        fit_column_(std::move(fit_column)) {
-    column_index(fit_column_);  // throws if the fit column is not one of the columns
-  }
+  ZRAKA_COMPILED_FN explicit convergence_log(std::string title, std::vector<std::string> columns = integral_columns(),
+                                             std::string fit_column = "abs_error", std::string n_name = "n");
 
   ZRAKA_COMPILED_FN void add(std::uint64_t n, double seconds, std::vector<double> values);
 
@@ -158,6 +154,13 @@ class convergence_log {
 };
 
 #if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
+ZRAKA_COMPILED_FN convergence_log::convergence_log(std::string title, std::vector<std::string> columns,
+                                                  std::string fit_column, std::string n_name)
+    : title_(std::move(title)), n_name_(std::move(n_name)), columns_(std::move(columns)),
+      fit_column_(std::move(fit_column)) {
+  column_index(fit_column_);  // throws if the fit column is not one of the columns
+}
+
 // [listing loglog-fit]
 // Fits ln y = a + b ln x. Points with x or y not positive and finite are skipped (an exact
 // zero error has no logarithm), so the fit needs at least two usable points.

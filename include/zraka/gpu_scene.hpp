@@ -571,4 +571,6 @@ rgb reference_sample(const scene_t<T>& sc, const light_set_t<T>& lights,
 }
 // [end]
 
+ZRAKA_INSTANCE(gpu_scene pack_scene(const scene_t<double>&, int, int, const path_options&))  // compiled.hpp
+
 }  // namespace zraka

@@ -45,7 +45,11 @@ struct image {
 inline double luminance(const rgb& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 // Images of one size in a row, `gap` white pixels apart (the figures of part 6).
-inline image side_by_side(const std::vector<image>& tiles, int gap = 2) {
+ZRAKA_COMPILED_FN image side_by_side(const std::vector<image>& tiles, int gap = 2);
+
+// Compiled into zraka::compiled (compiled.hpp) unless header-only.
+#if ZRAKA_COMPILED_DEFINITIONS
+ZRAKA_COMPILED_FN image side_by_side(const std::vector<image>& tiles, int gap) {
   const int w = tiles.at(0).width, h = tiles[0].height;
   image out(int(tiles.size()) * w + (int(tiles.size()) - 1) * gap, h, rgb(1));
   for (std::size_t i = 0; i < tiles.size(); ++i) {
@@ -56,8 +60,6 @@ inline image side_by_side(const std::vector<image>& tiles, int gap = 2) {
   return out;
 }
 
-// Compiled into zraka::compiled (compiled.hpp) unless header-only.
-#if ZRAKA_COMPILED_DEFINITIONS
 ZRAKA_COMPILED_FN void image::check_size(long long w, long long h) {
   if (w < 1 || h < 1 || w > max_side || h > max_side ||
       static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > max_pixels)

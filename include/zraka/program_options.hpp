@@ -111,10 +111,7 @@ struct program_options {
 
   // A file next to --out for a program that writes several: sibling("-reference") of
   // "aa.png" is "aa-reference.png", sibling("-regular", ".csv") is "aa-regular.csv".
-  std::string sibling(const std::string& suffix, const std::string& extension = "") const {
-    const std::filesystem::path o(out);
-    return ((o.parent_path() / o.stem()).string() + suffix) + (extension.empty() ? o.extension().string() : extension);
-  }
+  ZRAKA_COMPILED_FN std::string sibling(const std::string& suffix, const std::string& extension = "") const;
 
   // Was this option on the command line (e.g. given("--spp"))?
   bool given(const std::string& name) const { return app.count(name) > 0; }
@@ -148,6 +145,11 @@ struct program_options {
 
 #if ZRAKA_COMPILED_DEFINITIONS
 namespace zraka {
+ZRAKA_COMPILED_FN std::string program_options::sibling(const std::string& suffix, const std::string& extension) const {
+  const std::filesystem::path o(out);
+  return ((o.parent_path() / o.stem()).string() + suffix) + (extension.empty() ? o.extension().string() : extension);
+}
+
 ZRAKA_COMPILED_FN std::filesystem::path detail::output_folder_in(const std::filesystem::path& resource_root) {
   namespace fs = std::filesystem;
   std::error_code ec;

@@ -24,12 +24,28 @@
 #include <utility>
 #include <vector>
 
+// Compiled once into zraka::compiled where zraka was built with yaml-cpp (ZRAKA_COMPILED_SCENE_FILE:
+// the scene argument needs the scene reader), in a unit of its own (src/reference.cpp); header-only,
+// inline. They take the resource root as an argument (compiled.hpp); the wrappers pass the program's.
+#if defined(ZRAKA_COMPILED_SCENE_FILE)
+#define ZRAKA_REFERENCE_FN
+#else
+#define ZRAKA_REFERENCE_FN inline
+#endif
+#if !defined(ZRAKA_COMPILED_SCENE_FILE) || defined(ZRAKA_COMPILING_REFERENCE)
+#define ZRAKA_REFERENCE_DEFINITIONS 1
+#else
+#define ZRAKA_REFERENCE_DEFINITIONS 0
+#endif
+
 namespace zraka {
 
 // [listing mis-render]
 // The path tracer of chapter 2.3, its camera rays jittered over the pixel.
-inline image render_mis(const scene& sc, int spp, std::uint64_t seed, const path_options& po, const render_options& ro,
-                        render_stats& st) {
+ZRAKA_REFERENCE_FN image render_mis(const scene& sc, int spp, std::uint64_t seed, const path_options& po,
+                                    const render_options& ro, render_stats& st)
+#if ZRAKA_REFERENCE_DEFINITIONS
+{
   const path_tracer pt(sc, po);
   const auto cam = sc.prepared_camera();
   const int W = sc.settings.width, H = sc.settings.height;
@@ -40,19 +56,31 @@ inline image render_mis(const scene& sc, int spp, std::uint64_t seed, const path
   }, ro);
   return img;
 }
+#else
+    ;
+#endif
 // [end]
 
+namespace detail {
 // 8 hex digits of the FNV-1a hash of a --scene argument's file ("c++" for a scene built in C++).
-inline std::string scene_file_hash(const std::string& arg) {
-  const std::filesystem::path file = scene_argument_file(arg, resource_root());
+ZRAKA_REFERENCE_FN std::string scene_file_hash_in(const std::string& arg, const std::filesystem::path& root)
+#if ZRAKA_REFERENCE_DEFINITIONS
+{
+  const std::filesystem::path file = scene_argument_file(arg, root);
   if (file.empty()) return "c++";
-  const std::filesystem::path p = detail::resource_path_in(file.string(), resource_root());
+  const std::filesystem::path p = resource_path_in(file.string(), root);
   std::uint32_t h = 2166136261u;
   for (const char c : read_input_file(p)) h = (h ^ std::uint8_t(c)) * 16777619u;
   char buf[16];
   std::snprintf(buf, sizeof buf, "%08x", h);
   return buf;
 }
+#else
+    ;
+#endif
+}  // namespace detail
+
+inline std::string scene_file_hash(const std::string& arg) { return detail::scene_file_hash_in(arg, resource_root()); }
 
 struct mis_reference {
   image img;                 // (A + B) / 2
@@ -79,10 +107,12 @@ struct mis_reference {
 };
 
 // file_of("-a") names a half's file; the halves use seeds seed + 1000 and seed + 1001.
-inline mis_reference make_mis_reference(const scene& sc, int spp, std::uint64_t seed, const path_options& po,
-                                        const render_options& ro,
-                                        const std::function<std::string(const std::string&)>& file_of,
-                                        std::uint64_t& nonfinite) {
+ZRAKA_REFERENCE_FN mis_reference make_mis_reference(const scene& sc, int spp, std::uint64_t seed, const path_options& po,
+                                                    const render_options& ro,
+                                                    const std::function<std::string(const std::string&)>& file_of,
+                                                    std::uint64_t& nonfinite)
+#if ZRAKA_REFERENCE_DEFINITIONS
+{
   if (spp < 2 || spp > 65536 || spp % 2) throw error("--ref-spp must be even, in 2..65536, got " + std::to_string(spp));
   const int W = sc.settings.width, H = sc.settings.height;
   image half[2];
@@ -114,22 +144,49 @@ inline mis_reference make_mis_reference(const scene& sc, int spp, std::uint64_t 
   ref.files = file_of("-{a,b}");
   return ref;
 }
+#else
+    ;
+#endif
 
+namespace detail {
 // The stem of a reference's files for a --scene argument and the settings it depends on.
+ZRAKA_REFERENCE_FN std::string reference_tag_in(const std::string& scene_arg, int W, int H, int depth, int spp,
+                                                const std::filesystem::path& root)
+#if ZRAKA_REFERENCE_DEFINITIONS
+{
+  return "-reference-" + std::filesystem::path(scene_arg).stem().string() + "-" + scene_file_hash_in(scene_arg, root) +
+         "-" + std::to_string(W) + "x" + std::to_string(H) + "-d" + std::to_string(depth) + "-" + std::to_string(spp) +
+         "spp";
+}
+#else
+    ;
+#endif
+
+ZRAKA_REFERENCE_FN mis_reference program_reference_in(const program_options& cli, const scene& sc, int spp,
+                                                      const path_options& po, const render_options& ro,
+                                                      std::uint64_t& nonfinite, const std::filesystem::path& root)
+#if ZRAKA_REFERENCE_DEFINITIONS
+{
+  const std::string tag = reference_tag_in(cli.scene, sc.settings.width, sc.settings.height, po.max_depth, spp, root);
+  mis_reference ref = make_mis_reference(
+      sc, spp, cli.seed, po, ro, [&](const std::string& half) { return cli.sibling(tag + half, ".pfm"); }, nonfinite);
+  std::printf("%s\n", ref.describe(spp).c_str());
+  return ref;
+}
+#else
+    ;
+#endif
+}  // namespace detail
+
 inline std::string reference_tag(const std::string& scene_arg, int W, int H, int depth, int spp) {
-  return "-reference-" + std::filesystem::path(scene_arg).stem().string() + "-" + scene_file_hash(scene_arg) + "-" +
-         std::to_string(W) + "x" + std::to_string(H) + "-d" + std::to_string(depth) + "-" + std::to_string(spp) + "spp";
+  return detail::reference_tag_in(scene_arg, W, H, depth, spp, resource_root());
 }
 
 // A chapter program's reference: its files next to --out (cli.sibling), named after --scene
 // and the settings; its description printed.
 inline mis_reference program_reference(const program_options& cli, const scene& sc, int spp, const path_options& po,
                                        const render_options& ro, std::uint64_t& nonfinite) {
-  const std::string tag = reference_tag(cli.scene, sc.settings.width, sc.settings.height, po.max_depth, spp);
-  mis_reference ref = make_mis_reference(
-      sc, spp, cli.seed, po, ro, [&](const std::string& half) { return cli.sibling(tag + half, ".pfm"); }, nonfinite);
-  std::printf("%s\n", ref.describe(spp).c_str());
-  return ref;
+  return detail::program_reference_in(cli, sc, spp, po, ro, nonfinite, resource_root());
 }
 
 }  // namespace zraka

@@ -22,7 +22,9 @@ inline bool is_scene_path(const std::string& arg) {
 // "scenes/<name>.yaml" under the resource root); empty for a scene built in C++. A path is looked
 // for as given, then under `root`; a typo is a missing file named as the user wrote it, not a
 // resource-root problem.
-inline std::filesystem::path scene_argument_file(const std::string& arg, const std::filesystem::path& root) {
+ZRAKA_SCENE_FILE_FN std::filesystem::path scene_argument_file(const std::string& arg, const std::filesystem::path& root)
+#if ZRAKA_SCENE_FILE_DEFINITIONS
+{
   if (is_scene_path(arg)) {
     const std::filesystem::path p(arg);
     std::error_code ec;
@@ -35,6 +37,9 @@ inline std::filesystem::path scene_argument_file(const std::string& arg, const s
   if (n->build) return {};
   return "scenes/" + std::string(n->name) + ".yaml";
 }
+#else
+    ;
+#endif
 
 namespace detail {
 // Compiled once with the scene-file reader (ZRAKA_SCENE_FILE_FN, scene_file.hpp); the resource root
