@@ -13,7 +13,8 @@
 // renders 1, 2, 4, ... spp, each a render of its own (tools/mitsuba_reference.py --doubling),
 // after zraka is done, so the two never share the cores. The time to the target is interpolated
 // log-log between the rows that bracket it (seconds_to_reach, progressive.hpp).
-// The path tracers run in double and in float (scene_precision.hpp), each a row.
+// The path tracers run in double and in float (scene_precision.hpp), each a row. Each row also
+// gives its rate in million samples (paths) per second, Mitsuba's too.
 //   build/bin/time_to_error [--scene S] [--target RMSE] [--max-seconds S] [--ref-spp N]
 //                           [--integrators mis,nee,bdpt] [--precisions double,float]
 //                           [--mitsuba PYTHON|none] [--threads T]
@@ -89,13 +90,16 @@ struct result_t {
   convergence_log log;
 };
 
-void print_row(const result_t& r, double target) {
+// The last row's rate: its samples (spp x pixels) over its seconds; each row of bdpt and Mitsuba
+// is a render of its own, a path tracer's row holds every pass so far, so this is each one's rate.
+void print_row(const result_t& r, double target, double pixels) {
   const convergence_row& last = r.log.rows().back();
   const double t = seconds_to_reach(r.log, target);
   char secs[32];
   if (!std::isnan(t)) std::snprintf(secs, sizeof secs, "%.2f", t);
   else std::snprintf(secs, sizeof secs, "> %.1f", last.seconds);
-  std::printf("%-26s %10s %8llu %10.5f\n", r.method.c_str(), secs, static_cast<unsigned long long>(last.n), last.values[0]);
+  std::printf("%-26s %10s %8llu %10.5f %14.3f\n", r.method.c_str(), secs, static_cast<unsigned long long>(last.n),
+              last.values[0], double(last.n) * pixels / std::max(last.seconds, 1e-9) / 1e6);
   std::fflush(stdout);
 }
 
@@ -199,9 +203,9 @@ int main(int argc, char** argv) {
         bad);
     const output_error err(ref);
     std::printf("%s, %dx%d, at most %d bounces, %d threads: seconds to RMSE %.4f in RTIOW's output space\n"
-                "reference: mis, %d spp in two halves (%s), its own RMSE there %.5f, taken out\n\n%-26s %10s %8s %10s\n",
+                "reference: mis, %d spp in two halves (%s), its own RMSE there %.5f, taken out\n\n%-26s %10s %8s %10s %14s\n",
                 cli.scene.c_str(), W, H, po.max_depth, resolve_threads(cli.threads), target, ref_spp, ref.files.c_str(),
-                std::sqrt(err.noise_mse), "method", "seconds", "spp", "rmse");
+                std::sqrt(err.noise_mse), "method", "seconds", "spp", "rmse", "M samples/s");
     std::fflush(stdout);
 
     std::vector<result_t> results;
@@ -216,7 +220,7 @@ int main(int argc, char** argv) {
           r.log.add(std::uint64_t(n), clock.seconds(), {err(img)});
           if (r.log.rows().back().values[0] <= target || r.log.rows().back().seconds > max_seconds) break;
         }
-        print_row(r, target);
+        print_row(r, target, double(W) * H);
         results.push_back(std::move(r));
         continue;
       }
@@ -236,7 +240,7 @@ int main(int argc, char** argv) {
           r.log.add(std::uint64_t(t.spp), t.seconds, {err(mean)});
           return r.log.rows().back().values[0] > target && t.seconds <= max_seconds;
         });
-        print_row(r, target);
+        print_row(r, target, double(W) * H);
         results.push_back(std::move(r));
       };
       for (const std::string& precision : precision_names)
@@ -253,7 +257,7 @@ int main(int argc, char** argv) {
       std::error_code ec;
       if (std::filesystem::exists(py, ec)) {
         mi = run_mitsuba(py.string(), sc, po.max_depth, stem, err, target, max_seconds);
-        if (mi) print_row(*mi, target);
+        if (mi) print_row(*mi, target, double(W) * H);
       } else {
         std::printf("%-26s not run: %s not found (bash tools/mitsuba-setup.sh)\n", "mitsuba scalar_rgb", py.c_str());
       }
