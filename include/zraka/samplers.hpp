@@ -169,7 +169,7 @@ class sample_point final : public number_source {
     if (kind == sampler_kind::independent) return;  // nothing to prepare: the stream stays as it is
     pixel_key_ = hash_combine(seed_word(seed), pixel);
     jitter_key_ = hash_combine(hash_combine(pixel_key_, 0x2545f491u), index);
-    if (kind == sampler_kind::stratified) grid_ = strata_for(int(count_ > 65536 ? 65536 : count_));
+    if (kind == sampler_kind::stratified) grid_ = strata_for(int(count_ > 65536 ? 65536 : count_));  // --spp's most
   }
 
   // Backs stream g with this point while it lives (independent: leaves g alone).
@@ -193,7 +193,7 @@ class sample_point final : public number_source {
         return j % 2 == 0 ? detail::fraction_bits((cell % std::uint32_t(grid_.nx) + jitter) / grid_.nx)
                           : detail::fraction_bits((cell / std::uint32_t(grid_.nx) + jitter) / grid_.ny);
       }
-      case sampler_kind::independent: break;
+      case sampler_kind::independent: break;  // a hash: no stream asks (drive leaves it alone)
     }
     return pcg_hash(jitter_key_ ^ hash_combine(j, 0x1b873593u));
   }
