@@ -336,3 +336,41 @@ TEST_CASE("samplers: rendering the Cornell box, every sampler's mean agrees with
     CHECK(std::abs(mean) < 5 * se);
   }
 }
+
+TEST_CASE("samplers: a driven path draws each number once, each at its slot of its bounce's block") {
+  // A number source that records which stream numbers a path asks for.
+  struct recorder final : number_source {
+    std::vector<std::uint32_t> asked;
+    std::uint32_t number(std::uint32_t d) override {
+      asked.push_back(d);
+      return pcg_hash(d * 2654435761u);
+    }
+  };
+  for (cornell_variant v : {cornell_variant::boxes, cornell_variant::glass, cornell_variant::spheres}) {
+    const scene sc = cornell_box<double>(v);
+    path_options o;
+    o.max_depth = 12;
+    const path_tracer tracer(sc, o);
+    const auto cam = sc.prepared_camera();
+    int bounce_blocks = 0;
+    for (std::uint32_t s = 0; s < 400; ++s) {
+      recorder rec;
+      rng g(7, 0, s);
+      g.follow(rec, 1u << 20);
+      std::uint64_t rays = 0;
+      const vec2 px = g.uniform2();
+      tracer(cam.generate(px.x, px.y), g, rays);
+      std::set<std::uint32_t> seen;
+      for (std::uint32_t d : rec.asked) {
+        CHECK(seen.insert(d).second);  // never the same number twice
+        if (d < 4) continue;           // the pixel's coordinates
+        const std::uint32_t c = d / 2;
+        REQUIRE(c >= camera_coordinates);
+        const std::uint32_t slot = (c - camera_coordinates) % bounce_coordinates;
+        CHECK(slot != 1);  // the block's unused coordinate: surfaces never reach it
+        if (d % 2 == 0 && slot == std::uint32_t(path_slot::light_point)) ++bounce_blocks;
+      }
+    }
+    CHECK(bounce_blocks > 400);  // the light sample sat at its slot in many bounces
+  }
+}
