@@ -31,6 +31,7 @@
 #include <zraka/progressive.hpp>
 #include <zraka/reference.hpp>
 #include <zraka/resources.hpp>
+#include <zraka/samplers.hpp>
 #include <zraka/scene_argument.hpp>
 #include <zraka/scene_precision.hpp>
 #include <zraka/stopwatch.hpp>
@@ -168,7 +169,9 @@ int main(int argc, char** argv) {
   cli.app.add_option("--max-seconds", max_seconds, "a method stops after a pass that ends later than this");
   cli.app.add_option("--ref-spp", ref_spp, "samples per pixel of the mis reference (made once, cached in build/out/)");
   cli.app.add_option("--integrators", integrators, "comma-separated: naive, nee, mis (path tracing) and bdpt");
-  cli.app.add_option("--samplers", samplers, "comma-separated samplers for the path tracers: independent");
+  cli.app.add_option("--samplers", samplers, std::string("comma-separated samplers for the path tracers: ") + sampler_names +
+                         " (stratified is stratified over 65536 spp, the most a run may reach: a run stopped "
+                         "earlier has a random subset of the cells)");
   cli.app.add_option("--precisions", precisions, "comma-separated: double, float (the path tracers' arithmetic)");
   cli.app.add_option("--mitsuba", mitsuba,
                      "the Python that has the mitsuba package (relative: to the checkout); none: leave Mitsuba out");
@@ -178,9 +181,8 @@ int main(int argc, char** argv) {
     if (!(target > 0)) throw error("--target must be positive");
     if (!(max_seconds > 0)) throw error("--max-seconds must be positive");
     const std::vector<std::string> methods = split_list(integrators, "--integrators");
-    const std::vector<std::string> sampler_names = split_list(samplers, "--samplers");
-    for (const std::string& s : sampler_names)
-      if (s != "independent") throw error("unknown sampler '" + s + "' (independent)");
+    const std::vector<std::string> sampler_list = split_list(samplers, "--samplers");
+    for (const std::string& s : sampler_list) parse_sampler(s);  // an unknown name: refused before any work
     const std::vector<std::string> precision_names = split_list(precisions, "--precisions");
     for (const std::string& s : precision_names)
       if (s != "double" && s != "float") throw error("unknown precision '" + s + "' (double, float)");
@@ -233,7 +235,10 @@ int main(int argc, char** argv) {
         result_t r{method, convergence_log(method + " on " + stem, {"rmse"}, "rmse", "spp")};
         progressive_options prog;
         prog.max_spp = 65536, prog.seed = cli.seed, prog.render = ro;
+        const sampler_kind kind = parse_sampler(s);
         render_progressive(W, H, prog, [&](sample_context& c) {
+          sample_point point(kind, cli.seed, std::uint32_t(c.y * W + c.x), std::uint32_t(c.sample), std::uint32_t(c.spp));
+          point.drive(c.random);
           const vec2 o = pixel_sample(pixel_pattern::uniform, c.sample, c.spp, c.random);
           return tracer(cam.generate(T((c.x + o.x) / W), T((c.y + o.y) / H)), c.random, c.rays);
         }, [&](const image& mean, const progressive_totals& t) {
@@ -244,7 +249,7 @@ int main(int argc, char** argv) {
         results.push_back(std::move(r));
       };
       for (const std::string& precision : precision_names)
-        for (const std::string& s : sampler_names) {
+        for (const std::string& s : sampler_list) {
           if (precision == "double") run(path_tracer_t<double>(sc, p), sc.prepared_camera(), s);
           else run(path_tracer_t<float>(sc_float, p), sc_float.prepared_camera(), s);
         }

@@ -27,6 +27,7 @@
 #include <zraka/preview_window.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/progressive.hpp>
+#include <zraka/samplers.hpp>
 #include <zraka/scene_argument.hpp>
 #include <zraka/scene_file.hpp>
 

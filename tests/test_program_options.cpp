@@ -63,6 +63,31 @@ TEST_CASE("program_options: bad values are exit code 1, before any work") {
   }
 }
 
+TEST_CASE("program_options: --sampler only where taken, its name checked before any work") {
+  {
+    program_options o{"t", take::image | take::sampler};
+    o.out = "x.png", o.sampler = "stratified";
+    CHECK(run(o, {}) == -1);
+    CHECK(o.sampler_choice() == sampler_kind::stratified);  // the program's default
+  }
+  {
+    program_options o{"t", take::image | take::sampler};
+    o.out = "x.png";
+    CHECK(run(o, {"--sampler", "sobol"}) == -1);
+    CHECK(o.sampler_choice() == sampler_kind::sobol);
+  }
+  {
+    program_options o{"t", take::image | take::sampler};
+    o.out = "x.png";
+    CHECK(run(o, {"--sampler", "Sobol"}) == 1);  // names are exact
+  }
+  {
+    program_options o{"t", take::image};  // a program that does not take it refuses it
+    o.out = "x.png";
+    CHECK(run(o, {"--sampler", "sobol"}) == 1);
+  }
+}
+
 TEST_CASE("program_options: scene settings are the defaults unless the command line gives one") {
   struct settings_like { int width = 200, height = 100, spp = 64, max_depth = 8; std::uint64_t seed = 5; };
   program_options o{"t", take::image | take::depth | take::scene};

@@ -49,8 +49,25 @@ xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
 "$bin/pathtrace" --scene "$fig/../../scenes/textures.yaml" --spp 256 --out 2.2-textures.png >/dev/null && cp 2.2-textures.png "$fig/"
 "$bin/pathtrace" --scene "$fig/../../scenes/gltf-model.yaml" --out 4.1-gltf.png >/dev/null && cp 4.1-gltf.png "$fig/"
 "$bin/pathtrace" --scene "$fig/../../scenes/teapot-sky.yaml" --spp 256 --out 5.4-teapot-sky.png >/dev/null && cp 5.4-teapot-sky.png "$fig/"
-plot 5.1-antialiasing-{regular,uniform,stratified}.csv -o "$fig/5.1-rmse.png" \
-  --labels "regular,uniform,stratified" --title "Anti-aliasing: RMSE of the pixel integral"
+plot 5.1-antialiasing-{regular,uniform,stratified,sampler-sobol}.csv -o "$fig/5.1-rmse.png" \
+  --labels "regular,uniform,stratified,sobol" --title "Anti-aliasing: RMSE of the pixel integral"
+# 5.1's samplers on the Cornell box: a long sobol reference (a seed of its own), then each
+# sampler to 1024 spp, the error after every doubling; stratified is only stratified when all
+# its samples are in, so it gets a render of its own per spp (about 10 minutes on two cores).
+"$bin/pathtrace" --scene cornell --width 64 --height 64 --spp 16384 --sampler sobol --seed 1001 \
+  --pfm 5.1-ref.pfm --out 5.1-ref.png >/dev/null
+for s in independent halton sobol; do
+  "$bin/pathtrace" --scene cornell --width 64 --height 64 --spp 1024 --sampler $s --reference 5.1-ref.pfm \
+    --report 5.1-$s.csv --out 5.1-$s.png >/dev/null
+done
+echo "spp,seconds,rmse,relmse" > 5.1-stratified-each.csv
+for n in 1 2 4 8 16 32 64 128 256 512 1024; do
+  "$bin/pathtrace" --scene cornell --width 64 --height 64 --spp $n --sampler stratified --reference 5.1-ref.pfm \
+    --report 5.1-s.csv --out 5.1-s.png >/dev/null && tail -n 1 5.1-s.csv >> 5.1-stratified-each.csv
+done
+plot 5.1-independent.csv 5.1-stratified-each.csv 5.1-halton.csv 5.1-sobol.csv -o "$fig/5.1-samplers.png" \
+  --labels "independent,stratified (a render per spp),halton,sobol" \
+  --title "Cornell box, 64x64, mis: RMSE by sampler" --width 640
 plot 5.3-importance-{uniform,cosine,light,mixture}.csv -o "$fig/5.3-error.png" \
   --labels "uniform,cosine,light,mixture" --title "Direct light: RMSE by sampling strategy"
 # --- 6.2 (about 10 minutes on two cores: three 2048-spp mis references)

@@ -5,7 +5,9 @@
 // passes that double the samples per pixel; with --reference it prints, after every pass, the
 // error against that image and the time so far (error against run time), and --report writes the
 // same table as CSV for tools/plot_convergence.py. --time-budget stops the doubling early.
-// --window shows the image as the passes finish (preview_window.hpp).
+// --window shows the image as the passes finish (preview_window.hpp). --sampler picks where each
+// sample's numbers come from (samplers.hpp, book 5.1): independent (the default), stratified,
+// halton or sobol.
 //
 // Scenes (--scene): a name from named_scenes.hpp, among them the Cornell boxes (cornell,
 // cornell-glass, cornell-spheres; scenes/cornell*.yaml hold the same) and `furnace`, a camera
@@ -21,6 +23,7 @@
 #include <zraka/preview_window.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/progressive.hpp>
+#include <zraka/samplers.hpp>
 #include <zraka/scene_argument.hpp>
 
 #include <cmath>
@@ -31,7 +34,7 @@ using namespace zraka;
 
 int main(int argc, char** argv) {
   program_options opt{"Chapter 2.3: path tracing with the naive, nee or mis integrator, error against run time",
-                      take::scene | take::image | take::depth | take::window};
+                      take::scene | take::image | take::depth | take::window | take::sampler};
   opt.scene_names = named_scene_list();
   opt.scene = "cornell-glass", opt.out = "pathtrace.png", opt.scene_settings = true;
   opt.min_depth = 0, opt.max_depth = 1000;
@@ -83,7 +86,11 @@ int main(int argc, char** argv) {
     // [listing render]
     const path_tracer tracer(sc, io);
     const auto cam = sc.prepared_camera();
+    const sampler_kind sampler = opt.sampler_choice();
     auto sample = [&](sample_context& c) {
+      sample_point point(sampler, opt.seed, std::uint32_t(c.y) * std::uint32_t(W) + std::uint32_t(c.x),
+                         std::uint32_t(c.sample), std::uint32_t(c.spp));
+      point.drive(c.random);  // the sampler's numbers for this sample (independent: the stream's own)
       const vec2 o = centre ? vec2(0.5) : pixel_sample(pixel_pattern::uniform, c.sample, c.spp, c.random);
       return tracer(cam.generate((c.x + o.x) / W, (c.y + o.y) / H), c.random, c.rays);
     };
@@ -106,6 +113,7 @@ int main(int argc, char** argv) {
                 tracer.lights.describe().c_str());
     std::printf("integrator %s%s, at most %d bounces, Russian roulette from bounce %d\n", name(io.method),
                 io.method == integrator::mis ? " (power heuristic)" : "", io.max_depth, io.rr_depth);
+    std::printf("sampler %s\n", name(sampler));
     if (ref) {
       std::printf("%s", log.table().c_str());
       std::printf("%s\n", log.slope_line().c_str());

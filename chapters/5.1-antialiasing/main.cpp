@@ -4,13 +4,16 @@
 // checkered floor, a white ball, a grey sky), so the only error is this pixel integral. We
 // render it with 1, 4, 16 and 64 samples per pixel placed three ways (regular grid, uniform
 // random, stratified = one random point per grid cell), measure the RMSE against a reference
-// with many stratified samples rendered in the same run, and time each image.
+// with many stratified samples rendered in the same run, and time each image. A fourth column
+// places the samples by a sampler's first pair of coordinates (--sampler, samplers.hpp; sobol by
+// default): the low-discrepancy points of the page's last section.
 // Writes <out>.png (crops for the book), <out>-reference.png and <out>-<pattern>.csv.
 #include <zraka/convergence.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image_io.hpp>
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/render.hpp>
+#include <zraka/samplers.hpp>
 #include <zraka/scene.hpp>
 #include <zraka/scene_query.hpp>
 
@@ -67,8 +70,8 @@ void paste_crop(const image& src, int x0, int y0, int size, int zoom, image& out
 }  // namespace
 
 int main(int argc, char** argv) {
-  program_options cli{"Chapter 5.1: anti-aliasing - RMSE of regular, uniform and stratified pixel sampling", take::image};
-  cli.width = 160, cli.height = 120, cli.spp = 64, cli.out = "antialiasing.png";
+  program_options cli{"Chapter 5.1: anti-aliasing - RMSE of regular, uniform and stratified pixel sampling", take::image | take::sampler};
+  cli.width = 160, cli.height = 120, cli.spp = 64, cli.out = "antialiasing.png", cli.sampler = "sobol";
   int ref_spp = 512;
   cli.app.add_option("--ref-spp", ref_spp, "samples per pixel of the stratified reference");
   if (const auto done = cli.parse(argc, argv)) return *done;
@@ -96,6 +99,21 @@ int main(int argc, char** argv) {
     };
     // [end]
 
+    // [listing pixel-sampler]
+    // The same integral with the positions of a sampler's first pair of coordinates.
+    const sampler_kind sampler = cli.sampler_choice();
+    auto render_sampler = [&](int spp, image& img) {
+      return render(img, spp, seed, [&](sample_context& c) {
+        sample_point point(sampler, seed, std::uint32_t(c.y * width + c.x), std::uint32_t(c.sample),
+                           std::uint32_t(c.spp));
+        point.drive(c.random);
+        const vec2 o = c.random.uniform2();
+        c.rays += 1;
+        return unlit(sc, cam.generate((c.x + o.x) / width, (c.y + o.y) / height));
+      }, opt);
+    };
+    // [end]
+
     image reference(width, height);
     const render_stats ref_stats = render_with(pixel_pattern::stratified, ref_spp, reference);
     std::printf("reference: %d spp stratified, %.2f s\n", ref_spp, ref_stats.seconds);
@@ -116,10 +134,17 @@ int main(int argc, char** argv) {
         crops[p].push_back(std::move(img));
       }
     }
+    logs.emplace_back(std::string("sampler: ") + name(sampler), std::vector<std::string>{"rmse"}, "rmse", "spp");
+    for (int spp = 1; spp <= max_spp; spp *= 4) {
+      image img(width, height);
+      const render_stats s = render_sampler(spp, img);
+      bad += s.nonfinite;
+      logs.back().add(std::uint64_t(spp), s.seconds, {rmse(img, reference)});
+    }
 
     std::printf("\nRMSE against the reference (linear units; seconds in brackets)\n%6s", "spp");
     for (auto p : patterns) std::printf(" %22s", name(p));
-    std::printf("\n");
+    std::printf(" %22s\n", (std::string("sampler ") + name(sampler)).c_str());
     for (std::size_t row = 0; row < logs[0].rows().size(); ++row) {
       std::printf("%6llu", static_cast<unsigned long long>(logs[0].rows()[row].n));
       for (const auto& log : logs)
@@ -127,6 +152,7 @@ int main(int argc, char** argv) {
       std::printf("\n");
     }
     for (int p = 0; p < 3; ++p) std::printf("%-10s %s\n", name(patterns[p]), logs[p].slope_line().c_str());
+    std::printf("%-10s %s\n", name(sampler), logs[3].slope_line().c_str());
     const loglog_fit strat = logs[2].fit();
     if (!std::isnan(strat.slope))
       std::printf("the reference's own RMSE, extrapolating the stratified fit to %d spp: about %.5f\n", ref_spp,
@@ -144,6 +170,7 @@ int main(int argc, char** argv) {
     write_image(fig, out);
     write_image(reference, cli.sibling("-reference"));
     for (int p = 0; p < 3; ++p) logs[p].write_csv(cli.sibling(std::string("-").append(name(patterns[p])), ".csv"));
+    logs[3].write_csv(cli.sibling(std::string("-sampler-").append(name(sampler)), ".csv"));
     std::printf("wrote %s (crop at %d,%d, %dx%d px, x%d; top regular, bottom stratified), %s, "
                 "%s, ...\n",
                 out.c_str(), cx, cy, crop, crop, zoom, cli.sibling("-reference").c_str(),
@@ -151,6 +178,7 @@ int main(int argc, char** argv) {
     const auto& last = [&](int p) { return logs[p].rows().back().values[0]; };
     std::printf("summary: %.2f s; RMSE at %d spp: regular %.5f, uniform %.5f, stratified %.5f; %llu NaN/inf samples\n",
                 total.seconds(), max_spp, last(0), last(1), last(2), static_cast<unsigned long long>(bad));
+    std::printf("sampler %s: RMSE at %d spp %.5f\n", name(sampler), max_spp, last(3));
     return 0;
   });
 }

@@ -28,6 +28,7 @@
 #include <zraka/preview_window.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/render.hpp>
+#include <zraka/samplers.hpp>
 #include <zraka/scene_argument.hpp>
 
 #include <cmath>
@@ -46,7 +47,7 @@ struct run_result {
 
 // [listing media-render]
 run_result draw(const scene& sc, media_estimator est, double step, int spp, std::uint64_t seed, int width,
-                int height, const render_options& ro) {
+                int height, const render_options& ro, sampler_kind sampler) {
   path_options o;
   o.max_depth = sc.settings.max_depth;
   o.media.estimator = est;
@@ -57,6 +58,8 @@ run_result draw(const scene& sc, media_estimator est, double step, int spp, std:
   const auto cam = s.prepared_camera();
   run_result r{image(width, height), {}};
   r.stats = render(r.img, spp, seed, [&](sample_context& c) {
+    sample_point point(sampler, seed, std::uint32_t(c.y * width + c.x), std::uint32_t(c.sample), std::uint32_t(spp));
+    point.drive(c.random);  // --sampler (book 5.1); independent leaves the stream alone
     const double u = (c.x + c.random.uniform()) / width, v = (c.y + c.random.uniform()) / height;
     return tracer(cam.generate(u, v), c.random, c.rays);
   }, ro);
@@ -93,7 +96,7 @@ double image_mean(const image& a) {
 
 int main(int argc, char** argv) {
   program_options cli{"Chapter 6.1: participating media - ray marching at several steps against delta tracking",
-                      take::image | take::scene | take::window};
+                      take::image | take::scene | take::sampler | take::window};
   cli.width = 32, cli.height = 32, cli.spp = 16, cli.out = "media.png", cli.scene = "fog-cornell";
   int ref_spp = 192;
   std::vector<double> steps{0.5, 0.2, 0.05};
@@ -145,12 +148,14 @@ int main(int argc, char** argv) {
       }
       std::printf("\n2. the image\n");
     }
-    const run_result ref = draw(sc, media_estimator::delta, 0, ref_spp, cli.seed + 1000, cli.width, cli.height, ro);
+    const run_result ref = draw(sc, media_estimator::delta, 0, ref_spp, cli.seed + 1000, cli.width, cli.height, ro,
+                                  sampler_kind::independent);
     std::printf("reference: delta tracking, %dx%d, %d spp, seed %llu, computed in this run: %.2f s, mean %.5f, "
                 "%llu NaN/inf samples\n",
                 cli.width, cli.height, ref_spp, (unsigned long long)(cli.seed + 1000), ref.stats.seconds,
                 image_mean(ref.img), (unsigned long long)ref.stats.nonfinite);
 
+    std::printf("sampler %s (the reference's: independent)\n", cli.sampler.c_str());
     // [listing media-table]
     std::printf("\n%-12s %6s %10s %10s %12s\n", "estimator", "spp", "seconds", "RMSE", "mean - ref");
     struct row {
@@ -168,7 +173,7 @@ int main(int argc, char** argv) {
     for (const row& w : rows) {
       double rmse_last = 0;
       for (int n = 1; n <= cli.spp && !stopped; n *= 4) {
-        const run_result r = draw(sc, w.est, w.step, n, cli.seed, cli.width, cli.height, ro);
+        const run_result r = draw(sc, w.est, w.step, n, cli.seed, cli.width, cli.height, ro, cli.sampler_choice());
         nonfinite += r.stats.nonfinite;
         rmse_last = rmse(r.img, ref.img);
         std::printf("%-12s %6d %10.3f %10.5f %+12.5f\n", w.name.c_str(), n, r.stats.seconds, rmse_last,

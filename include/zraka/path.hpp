@@ -76,10 +76,32 @@ template <class T> T power_heuristic(T a, T b) {
   return T(1) / (T(1) + r * r);
 }
 
+// [listing path-dimensions]
+// Where a path's numbers live in its stream when a sampler backs it (samplers.hpp, book 5.1):
+// the camera's coordinates first, then a block per bounce, so coordinate k means the same draw
+// in every sample and the sampler's 2-D pairs (coordinates 2i, 2i + 1) fall on the 2-D draws.
+// A bounce that draws less leaves the rest of its block unused; one that draws more (a
+// medium's free flights) pushes its later draws on, as rng::seek only jumps forward. Two stream
+// numbers make one coordinate (a double). Plain streams ignore all this: their numbers are
+// independent wherever they are.
+enum class path_slot : std::uint32_t {
+  light_choice = 0,  // 1 (coordinate 1 of the block unused)
+  light_point = 2,   // 2
+  bsdf = 4,          // 2 for the direction (or 1 for glass, 3 for fuzzy metal), 1 for the lobe
+  roulette = 7,      // 1
+};
+inline constexpr std::uint32_t camera_coordinates = 4;  // the pixel position (0, 1), the lens (2, 3)
+inline constexpr std::uint32_t bounce_coordinates = 8;
+constexpr std::uint32_t path_number(int bounce, path_slot s) {
+  return 2 * (camera_coordinates + bounce_coordinates * std::uint32_t(bounce) + std::uint32_t(s));
+}
+// [end]
+
 // [listing roulette]
 // Russian roulette: true if the path goes on (then beta has been divided by q).
 inline bool survives_roulette(rgb& beta, int bounce, const path_options& opt, rng& g) {
   if (bounce < opt.rr_depth) return true;
+  g.seek(path_number(bounce, path_slot::roulette));
   const float q = std::min(1.0f, max_component(beta));
   if (!(g.uniform() < q)) return false;
   beta /= q;
@@ -113,7 +135,9 @@ rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r
         const phase_t<T> ph{T(md.g)};
         const vec3_t<T> wo = -r.direction;
         if (nee) {
+          g.seek(path_number(bounce, path_slot::light_choice));
           const T u_select = T(g.uniform());
+          g.seek(path_number(bounce, path_slot::light_point));
           const vec2_t<T> u(g.uniform2());
           if (const auto e = lights.sample(mh, u_select, u); e && e->Le != rgb(0)) {
             ++rays;
@@ -125,6 +149,7 @@ rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r
             }
           }
         }
+        g.seek(path_number(bounce, path_slot::bsdf));
         const phase_sample_t<T> ps = ph.sample(wo, vec2_t<T>(g.uniform2()));  // weight p / pdf = 1
         specular = false;
         bsdf_pdf = ps.pdf;
@@ -162,7 +187,9 @@ rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r
     if (bounce == opt.max_depth) return L;
     const vec3_t<T> wo = -r.direction;
     if (nee && has_density(m)) {  // the next event: a point on a light
+      g.seek(path_number(bounce, path_slot::light_choice));
       const T u_select = T(g.uniform());
+      g.seek(path_number(bounce, path_slot::light_point));
       const vec2_t<T> u(g.uniform2());
       if (const auto e = lights.sample(sh.h, u_select, u); e && e->Le != rgb(0)) {
         const rgb f_cos = brdf_cos(m, sh.h, wo, e->wi);
@@ -178,6 +205,7 @@ rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r
         }
       }
     }
+    g.seek(path_number(bounce, path_slot::bsdf));
     const auto s = scatter(m, r.direction, sh.h, g);
     if (!s) return L;  // absorbed (or a light, which does not reflect)
     beta *= s->weight;  // f cos / pdf: the cosine is counted once, inside the weight

@@ -19,6 +19,7 @@
 #include <zraka/image.hpp>
 #include <zraka/render.hpp>
 #include <zraka/resources.hpp>
+#include <zraka/samplers.hpp>
 
 #include <cstdint>
 #include <cstdio>
@@ -34,6 +35,7 @@ namespace zraka {
 enum class take : unsigned {
   none = 0, size = 1, spp = 2, depth = 4, seed = 8, threads = 16, out = 32, scene = 64,
   window = 128,  // --window, --window-screenshot: a progressive render shown as it goes (preview_window.hpp)
+  sampler = 256,  // --sampler: where a sample's numbers come from (samplers.hpp, book 5.1)
   image = 1 | 2 | 8 | 16 | 32,  // a rendering program: size, spp, seed, threads, out
 };
 constexpr take operator|(take a, take b) { return take(unsigned(a) | unsigned(b)); }
@@ -84,6 +86,7 @@ struct program_options {
   std::string out;  // a full file name; its extension picks the format
   std::vector<std::string> out_types{".png", ".ppm", ".pfm", ".exr"};
   std::string scene = "cornell";  // a name from named_scenes.hpp or a .yaml path
+  std::string sampler = "independent";  // --sampler: a name from samplers.hpp; sampler_choice() after parse
   std::string scene_names;        // for --help: named_scene_list() (this header needs no scene types)
   // true: size, spp, depth and seed default to the scene's own settings (apply_to); --help says so.
   bool scene_settings = false;
@@ -112,6 +115,9 @@ struct program_options {
   // A file next to --out for a program that writes several: sibling("-reference") of
   // "aa.png" is "aa-reference.png", sibling("-regular", ".csv") is "aa-regular.csv".
   ZRAKA_COMPILED_FN std::string sibling(const std::string& suffix, const std::string& extension = "") const;
+
+  // The sampler --sampler named (parse has checked the name).
+  sampler_kind sampler_choice() const { return parse_sampler(sampler); }
 
   // Was this option on the command line (e.g. given("--spp"))?
   bool given(const std::string& name) const { return app.count(name) > 0; }
@@ -198,6 +204,7 @@ ZRAKA_COMPILED_FN std::optional<int> program_options::parse_shared(int argc, cha
   if (const auto done = parse_command_line(app, argc, argv)) return done;
   try {
     if (has(taken_, take::threads)) threads = resolve_threads(threads);
+    if (has(taken_, take::sampler)) parse_sampler(sampler);  // an unknown name: the error lists the known ones
     if (has(taken_, take::out)) {
       check_output_name(out);
       const std::string ext = std::filesystem::path(out).extension().string();
@@ -249,6 +256,9 @@ ZRAKA_COMPILED_FN void program_options::add_shared() {
   if (has(taken_, take::seed)) dflt(app.add_option("--seed", seed, "random seed (same seed, same result)"));
   if (has(taken_, take::threads))
     app.add_option("--threads", threads, "threads (0 = all cores)");
+  if (has(taken_, take::sampler))
+    app.add_option("--sampler", sampler, std::string("where each sample's numbers come from: ") + sampler_names +
+                                             " (book 5.1)");
   if (has(taken_, take::out)) {
     std::string types;
     for (const std::string& t : out_types) types += (types.empty() ? "" : ", ") + t;

@@ -37,7 +37,8 @@ constexpr std::uint32_t seed_word(std::uint64_t seed) {
 
 // Where the numbers of a stream may come from instead of the hash: chapter 6.4's primary
 // sample space (pss.hpp), whose Markov chain keeps and mutates every number a path drew, so
-// the unchanged path tracer follows the chain. Number `dimension` of the stream is asked for.
+// the unchanged path tracer follows the chain; or a low-discrepancy sampler's point
+// (samplers.hpp, book 5.1). Number `dimension` of the stream is asked for.
 class number_source {
  public:
   virtual std::uint32_t number(std::uint32_t dimension) = 0;
@@ -57,7 +58,7 @@ class rng {
   // [listing rng-next]
   // Number `dimension` of the stream: a hash of (key, dimension), no state but the counter.
   constexpr std::uint32_t next_u32() {
-    if (source_) return source_->number(dimension_++);  // 6.4 only; a well-predicted branch elsewhere
+    if (dimension_ < sourced_) return source_->number(dimension_++);  // a well-predicted branch elsewhere
     return pcg_hash(key_pixel_ ^ hash_combine(key_sample_, dimension_++));
   }
   // [end]
@@ -87,12 +88,28 @@ class rng {
   static rng from(number_source& source) {
     rng g(0);
     g.source_ = &source;
+    g.sourced_ = ~0u;
     return g;
+  }
+  // Numbers 0 .. count - 1 of this stream come from a sampler's point `source` (not owned), the
+  // rest from the stream's own hash, so a path longer than the sampler's dimensions stays right.
+  void follow(number_source& source, std::uint32_t count) {
+    source_ = &source;
+    sourced_ = count;
+    aligned_ = true;
+  }
+  // A stream that follows a sampler jumps forward to number `dimension`, where the path's next
+  // draw lives (path.hpp's fixed blocks); never back, so no number is used twice. Other streams
+  // are not moved: their numbers need no alignment, and 6.4's chain keeps its own order.
+  void seek(std::uint32_t dimension) {
+    if (aligned_ && dimension_ < dimension) dimension_ = dimension;
   }
 
  private:
   std::uint32_t key_pixel_, key_sample_;
   std::uint32_t dimension_ = 0;
+  std::uint32_t sourced_ = 0;  // numbers below this come from source_
+  bool aligned_ = false;       // follows a sampler: seek moves it
   number_source* source_ = nullptr;
 };
 
