@@ -154,13 +154,16 @@ inline unsigned hit_boxes4(const bvh_node4& n, const box4_ray& r, float t_min, f
 // [end]
 
 namespace detail {
-// The four children of one wide node are binary nodes; `kids` starts as one node's two children.
+// The four children of one wide node are binary nodes; they start as one node's two children.
 template <class T>
-std::uint32_t collapse4_node(const bvh_t<T>& b, std::vector<std::uint32_t> kids, std::vector<bvh_node4>& out) {
-  while (kids.size() < 4) {  // open the inner kid with the largest box
+std::uint32_t collapse4_node(const bvh_t<T>& b, std::uint32_t first, std::uint32_t second,
+                             std::vector<bvh_node4>& out) {
+  std::array<std::uint32_t, 4> kids{first, second, 0, 0};
+  int count = 2;
+  while (count < 4) {  // open the inner kid with the largest box
     int widest = -1;
     T widest_area = -1;
-    for (int k = 0; k < int(kids.size()); ++k) {
+    for (int k = 0; k < count; ++k) {
       const bvh_node_t<T>& n = b.nodes[kids[k]];
       if (!n.leaf() && n.box.surface_area() > widest_area) {
         widest = k;
@@ -170,7 +173,7 @@ std::uint32_t collapse4_node(const bvh_t<T>& b, std::vector<std::uint32_t> kids,
     if (widest < 0) break;  // only leaves
     const std::uint32_t k = kids[std::size_t(widest)];
     kids[std::size_t(widest)] = k + 1;  // the first child follows its parent
-    kids.push_back(b.nodes[k].index);   // the second
+    kids[std::size_t(count++)] = b.nodes[k].index;  // the second
   }
   const auto me = static_cast<std::uint32_t>(out.size());
   out.emplace_back();
@@ -179,14 +182,14 @@ std::uint32_t collapse4_node(const bvh_t<T>& b, std::vector<std::uint32_t> kids,
       out[me].box[a][k] = infinity<float>;  // an empty box: unused slot
       out[me].box[3 + a][k] = -infinity<float>;
     }
-  for (int k = 0; k < int(kids.size()); ++k) {
+  for (int k = 0; k < count; ++k) {
     const bvh_node_t<T>& n = b.nodes[kids[std::size_t(k)]];
     for (int a = 0; a < 3; ++a) {
       out[me].box[a][k] = float_down(n.box.lo[a]);
       out[me].box[3 + a][k] = float_up(n.box.hi[a]);
     }
     out[me].count[k] = n.count;
-    out[me].child[k] = n.leaf() ? n.index : collapse4_node(b, {kids[std::size_t(k)] + 1, n.index}, out);
+    out[me].child[k] = n.leaf() ? n.index : collapse4_node(b, kids[std::size_t(k)] + 1, n.index, out);
   }
   return me;
 }
@@ -217,7 +220,7 @@ template <class T> std::vector<bvh_node4> collapse4(const bvh_t<T>& b) {
     n.count[0] = b.nodes[0].count;
     return out;
   }
-  detail::collapse4_node(b, {1, b.nodes[0].index}, out);
+  detail::collapse4_node(b, 1, b.nodes[0].index, out);
   return out;
 }
 // [end]
@@ -280,6 +283,15 @@ bool wide_nearest(const std::vector<bvh_node4>& nodes, const box4_ray& r, float 
       int j = top++;
       for (; j > first && stack[std::size_t(j - 1)].t_enter < t[k]; --j) stack[std::size_t(j)] = stack[std::size_t(j - 1)];
       stack[std::size_t(j)] = {n.child[k], n.count[k], t[k]};
+#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+      // An inner node: start fetching its two cache lines now (incoherent rays on a million
+      // triangles: 0.48 -> 0.57 of Embree's speed; the leaves' triangles too: no gain).
+      if (n.count[k] == 0) {
+        const char* p = reinterpret_cast<const char*>(&nodes[n.child[k]]);
+        _mm_prefetch(p, _MM_HINT_T0);
+        _mm_prefetch(p + 64, _MM_HINT_T0);
+      }
+#endif
     }
   }
   return found;
