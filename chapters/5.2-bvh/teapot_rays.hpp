@@ -1,8 +1,8 @@
 #pragma once
-// The two ray sets of chapter 5.2, shared with bench/bvh_embree.cpp so that both measure the
-// same rays: camera rays (coherent: neighbours take nearly the same path through the tree) and
+// The ray sets of chapter 5.2, shared with bench/bvh_embree.cpp so that both measure the same
+// rays: camera rays (coherent: neighbours take nearly the same path through the tree),
 // incoherent rays (random origins in and around the model, uniformly random directions, like
-// the bounces of a path tracer).
+// the bounces of a path tracer) and incoherent rays from a bounding sphere through the box.
 #include <zraka/aabb.hpp>
 #include <zraka/camera.hpp>
 #include <zraka/mesh.hpp>
@@ -53,6 +53,26 @@ inline std::vector<rayf> random_rays(const aabb& box, int n, std::uint64_t seed)
     const double z = 2 * g.uniform() - 1, phi = 2 * pi<double> * g.uniform();
     const double s = std::sqrt(std::max(0.0, 1 - z * z));
     rays.emplace_back(vec3f(o), vec3f(vec3(s * std::cos(phi), s * std::sin(phi), z)));
+  }
+  return rays;
+}
+
+// n rays from a sphere around the model into it: origins uniform on the sphere that bounds the
+// box (radius: half its diagonal), each aimed at a point uniform in the box. Incoherent like
+// random_rays, but every ray comes from outside and crosses the whole model, as in the usual
+// "rays from a bounding sphere" benchmark.
+inline std::vector<rayf> sphere_rays(const aabb& box, int n, std::uint64_t seed) {
+  const vec3 c = box.center(), e = box.extent();
+  const double radius = 0.5 * glm::length(e);
+  std::vector<rayf> rays;
+  rays.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    rng g(seed, std::uint32_t(i), 7);
+    const double z = 2 * g.uniform() - 1, phi = 2 * pi<double> * g.uniform();
+    const double s = std::sqrt(std::max(0.0, 1 - z * z));
+    const vec3 o = c + radius * vec3(s * std::cos(phi), s * std::sin(phi), z);
+    const vec3 target = box.lo + vec3(g.uniform(), g.uniform(), g.uniform()) * e;
+    rays.emplace_back(vec3f(o), vec3f(target - o));
   }
   return rays;
 }

@@ -37,12 +37,21 @@ template <class T> struct parallelogram_t {
 using quad = parallelogram_t<double>;
 using quadf = parallelogram_t<float>;
 
-// The nearest hit with t in (t_min, t_max); fills `rec` only on a hit.
+// What the intersection derives from the quad alone: its normal, unnormalised and unit, and
+// n / |n|^2 for the plane coordinates. The object BVH keeps one per quad (scene.hpp), so that a
+// ray does not normalise a cross product per quad it tests; the numbers are the same either way.
+template <class T> struct quad_plane_t {
+  vec3_t<T> n_raw, N, w;
+  explicit quad_plane_t(const parallelogram_t<T>& q)
+      : n_raw(glm::cross(q.u, q.v)), N(normalize_or_zero(n_raw)), w(n_raw / glm::dot(n_raw, n_raw)) {}
+};
+
+// The nearest hit with t in (t_min, t_max); fills `rec` only on a hit. pl is quad_plane_t(q).
 // [listing quad-intersect]
 template <class T>
-bool intersect(const parallelogram_t<T>& q, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& rec) {
-  const vec3_t<T> n_raw = glm::cross(q.u, q.v);
-  const vec3_t<T> N = normalize_or_zero(n_raw);
+bool intersect(const parallelogram_t<T>& q, const quad_plane_t<T>& pl, const ray_t<T>& r, T t_min, T t_max,
+               hit_t<T>& rec) {
+  const vec3_t<T>& N = pl.N;
   const vec3_t<T> D = r.direction;
   const T denom = glm::dot(N, D);
   // Parallel (or NaN): the sign of N.D is lost in its rounding error.
@@ -59,7 +68,7 @@ bool intersect(const parallelogram_t<T>& q, const ray_t<T>& r, T t_min, T t_max,
 
   // Plane coordinates: with d = P - Q = a u + b v, a = (d x v).n / |n|^2, b = (u x d).n / |n|^2.
   const vec3_t<T> d = r.at(t) - q.corner;
-  const vec3_t<T> w = n_raw / glm::dot(n_raw, n_raw);
+  const vec3_t<T>& w = pl.w;
   const T a = glm::dot(w, glm::cross(d, q.v));
   const T b = glm::dot(w, glm::cross(q.u, d));
   if (!(a >= T(0) && a <= T(1) && b >= T(0) && b <= T(1))) return false;
@@ -73,6 +82,11 @@ bool intersect(const parallelogram_t<T>& q, const ray_t<T>& r, T t_min, T t_max,
   rec.uv = {a, b};
   rec.set_face(D);
   return true;
+}
+
+template <class T>
+bool intersect(const parallelogram_t<T>& q, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& rec) {
+  return intersect(q, quad_plane_t<T>(q), r, t_min, t_max, rec);
 }
 
 template <class T> bool occludes(const parallelogram_t<T>& q, const ray_t<T>& r, T t_min, T t_max) {

@@ -9,7 +9,8 @@
 // (user_shape.hpp: any shape a program defines). visit_object() is the one place that knows the
 // list of kinds; everything else (intersection, bounds, light sampling) asks it.
 // build_acceleration() makes an object BVH over the bounded objects when there are enough of
-// them to pay; planes are infinite and are always tested.
+// them to pay: bvh.hpp's binary tree, collapsed to wide_bvh.hpp's four-wide nodes, which
+// nearest_hit() and occluded() walk; planes are infinite and are always tested.
 #include <zraka/bvh.hpp>
 #include <zraka/camera.hpp>
 #include <zraka/compiled.hpp>
@@ -25,6 +26,7 @@
 #include <zraka/triangle.hpp>
 #include <zraka/triangle_bvh.hpp>
 #include <zraka/user_shape.hpp>
+#include <zraka/wide_bvh.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -74,8 +76,10 @@ template <class T> using user_shape_ptr = std::shared_ptr<const user_shape_t<T>>
 template <class T> struct scene_t {
   // The object BVH over the bounded objects, when build_acceleration() decided to make one.
   struct acceleration {
-    bvh_t<T> tree;
+    bvh_t<T> tree;                    // the binary tree (bvh.hpp), kept for its readable walk
+    wide_bvh wide;                    // the same tree four-wide: what queries walk
     std::vector<object_ref> objects;  // the BVH's primitive i is objects[i]
+    std::vector<quad_plane_t<T>> quad_planes;  // quad i's plane (quad.hpp), computed once
     double seconds = 0;
   };
 
@@ -151,7 +155,7 @@ template <class T> struct scene_t {
   // Call it again after adding objects; until then nearest_hit() falls back to testing all.
   // Returns whether a BVH was built.
   bool build_acceleration(std::size_t threshold = 4);
-  bool has_object_bvh() const { return !accel.tree.empty() && accel.objects.size() == bounded_count(); }
+  bool has_object_bvh() const { return !accel.wide.empty() && accel.objects.size() == bounded_count(); }
 
   // The camera with the image's aspect ratio, ready to generate rays.
   typename camera_t<T>::prepared prepared_camera() const {
@@ -307,9 +311,13 @@ template <class T> aabb_t<T> bounds_one(const mesh_object_t<T>& mo, T) {
 }  // namespace detail
 
 // One object's own intersection test, the building block for brute force and for a BVH.
+// A quad's plane comes from the object BVH when it was built with it.
 template <class T>
 bool intersect_object(const scene_t<T>& sc, object_ref o, const ray_t<T>& r, T t_min, T t_max,
                       hit_t<T>& h, std::uint32_t& triangle) {
+  const auto i = std::size_t(o.index);
+  if (o.kind == shape_kind::quad && i < sc.accel.quad_planes.size())
+    return intersect(sc.quads[i].shape, sc.accel.quad_planes[i], r, t_min, t_max, h);
   return visit_object(sc, o, [&](const auto& obj) { return detail::intersect_one(obj, r, t_min, t_max, h, triangle); });
 }
 template <class T>
@@ -318,6 +326,11 @@ bool intersect_object(const scene_t<T>& sc, object_ref o, const ray_t<T>& r, T t
   return intersect_object(sc, o, r, t_min, t_max, h, ignored);
 }
 template <class T> bool object_blocks(const scene_t<T>& sc, object_ref o, const ray_t<T>& r, T t_max) {
+  const auto i = std::size_t(o.index);
+  if (o.kind == shape_kind::quad && i < sc.accel.quad_planes.size()) {
+    hit_t<T> ignored;
+    return intersect(sc.quads[i].shape, sc.accel.quad_planes[i], r, T(0), t_max, ignored);
+  }
   return visit_object(sc, o, [&](const auto& obj) { return detail::blocks_one(obj, r, t_max); });
 }
 // The object's box, padded for rounding; empty for a plane.
@@ -336,6 +349,8 @@ template <class T> bool scene_t<T>::build_acceleration(std::size_t threshold) {
     boxes.push_back(object_bounds(*this, o));
   });
   accel.tree = build_bvh(boxes);
+  accel.wide = make_wide_bvh(accel.tree);
+  for (const auto& q : quads) accel.quad_planes.emplace_back(q.shape);
   accel.seconds = clock.seconds();
   return true;
 }

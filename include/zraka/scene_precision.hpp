@@ -96,7 +96,7 @@ template <class U, class T> scene_t<U> scene_in(const scene_t<T>& s) {
   f.settings = s.settings;
   f.media = s.media;
   f.global_medium = s.global_medium;
-  if (!s.accel.tree.empty()) f.build_acceleration();
+  if (s.has_object_bvh()) f.build_acceleration();
   return f;
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 // Asking a scene about rays (book 2.2, 4.1, 5.2): the nearest hit along a ray and whether a
 // shadow segment is blocked. Both test every object, unless build_acceleration() made an object
-// BVH (bvh.hpp); planes are infinite and are always tested. Renderers never know which of the
-// two happened.
-#include <zraka/bvh.hpp>
+// BVH (walked four-wide: wide_bvh.hpp); planes are infinite and are always tested. Renderers
+// never know which of the two happened.
+#include <zraka/wide_bvh.hpp>
 #include <zraka/compiled.hpp>
 #include <zraka/scene.hpp>
 #include <zraka/spawn.hpp>
@@ -40,7 +40,7 @@ bool nearest_hit(const scene_t<T>& sc, const ray_t<T>& r, scene_hit_t<T>& out, T
   };
   if (sc.has_object_bvh()) {
     for (int i = 0; i < static_cast<int>(sc.planes.size()); ++i) visit({shape_kind::plane, i});
-    bvh_intersect(sc.accel.tree, r, T(0), t_max, [&](std::uint32_t i, T& tm) {
+    wide_intersect(sc.accel.wide, r, T(0), t_max, [&](std::uint32_t i, T& tm) {
       t_max = tm;
       const bool hit = visit(sc.accel.objects[i]);
       tm = t_max;
@@ -69,7 +69,7 @@ template <class T> bool occluded(const scene_t<T>& sc, const segment_t<T>& s) {
   if (sc.has_object_bvh()) {
     for (int i = 0; i < static_cast<int>(sc.planes.size()); ++i)
       if (object_blocks(sc, {shape_kind::plane, i}, s.ray, s.t_max)) return true;
-    return bvh_occluded(sc.accel.tree, s.ray, T(0), s.t_max, [&](std::uint32_t i) {
+    return wide_occluded(sc.accel.wide, s.ray, T(0), s.t_max, [&](std::uint32_t i) {
       return object_blocks(sc, sc.accel.objects[i], s.ray, s.t_max);
     });
   }

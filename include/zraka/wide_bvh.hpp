@@ -1,0 +1,376 @@
+#pragma once
+// The wide BVH (book 5.2): bvh.hpp's binary tree collapsed into nodes of four children whose
+// boxes are tested at once, one SSE instruction per step for all four. One layout, one box test
+// and one traversal serve both users:
+// * triangle_bvh.hpp, a mesh's triangles (float rays);
+// * the scene's object BVH (scene.hpp, scene_query.hpp): spheres, quads, triangles, meshes and
+//   user shapes, in float or double.
+// The boxes are stored in float whatever the tree's precision, rounded outward, so that a float
+// box contains its double box; a double ray is made a float one the same careful way (its origin
+// rounded towards the side that lengthens each slab). The box test therefore keeps every box the
+// exact test keeps, and the hits are those of the readable binary traversal (bvh_intersect), as
+// tests/test_wide_bvh.cpp checks; only the order of the walk differs.
+// No allocation per ray: the traversal stack is a fixed array, sized by bvh_max_depth, which the
+// builder respects (bvh.hpp) and collapse4() checks.
+#include <zraka/aabb.hpp>
+#include <zraka/bvh.hpp>
+#include <zraka/error.hpp>
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+#include <immintrin.h>
+#endif
+
+namespace zraka {
+
+// [listing compact-node]
+// A node with four children (a binary BVH with every other level removed). Child k's box is
+// box[a][k] <= x[a] <= box[3 + a][k] (rows lo.x, lo.y, lo.z, hi.x, hi.y, hi.z). A child is a leaf
+// of count[k] entries from position child[k] of the primitive order, or an inner node
+// nodes[child[k]] (count 0). Unused slots have an empty box, which no ray hits.
+struct alignas(64) bvh_node4 {
+  float box[6][4];
+  std::uint32_t child[4];
+  std::uint32_t count[4];
+};
+// [end]
+static_assert(sizeof(bvh_node4) == 128, "two cache lines");
+
+// x rounded to a float towards -inf (down) or +inf (up): float(x) rounds to nearest, one step
+// fixes the side. Beyond float's range: down(1e300) = FLT_MAX, up(1e300) = inf. The step is
+// std::nextafter's done on the bits without a branch: whether float(x) fell below or above x is
+// a coin toss for a ray's origin, and a mispredicted branch costs more than the box test.
+namespace detail {
+inline float float_step(float f, bool up, bool step) {
+  auto bits = std::bit_cast<std::uint32_t>(f);
+  if (up) bits = bits == 0x80000000u ? 0u : bits;  // from -0 up: as from +0
+  else bits = bits == 0u ? 0x80000000u : bits;     // from +0 down: as from -0
+  const bool negative = (bits >> 31) != 0;
+  const std::uint32_t delta = up != negative ? 1u : ~0u;  // away from 0 (+1) or towards it (-1)
+  return std::bit_cast<float>(bits + (step ? delta : 0u));
+}
+}  // namespace detail
+template <class T> float float_down(T x) {
+  const float f = static_cast<float>(x);
+  return detail::float_step(f, false, static_cast<T>(f) > x);
+}
+template <class T> float float_up(T x) {
+  const float f = static_cast<float>(x);
+  return detail::float_step(f, true, static_cast<T>(f) < x);
+}
+
+// [listing box4-ray]
+// A ray prepared for the four-box test: the reciprocal direction, per axis which row of a node
+// is the near side of a slab (lo where the direction is positive, hi where negative, by the sign
+// bit: 1/(-0) = -inf), and the origin. A double origin is rounded to float in two ways, so that
+// each slab only grows: towards the far side for the near plane and towards the near side for
+// the far plane. A float ray keeps its origin. `exact` is false when the reciprocal direction
+// does not fit in float's normal range (a component below ~1e-38 but not 0, or beyond ~1e38):
+// the traversal then visits every leaf rather than risk losing one. So does an infinite
+// component (its reciprocal 0 is below that range). A NaN component: no ray at all.
+struct box4_ray {
+  float near_origin[3], far_origin[3], inv_direction[3];
+  int near_row[3], far_row[3];
+  bool valid = false;  // a finite origin and a finite, non-zero direction
+  bool exact = true;
+  template <class T> explicit box4_ray(const ray_t<T>& r) {
+    valid = r.valid() && !(std::isnan(r.direction.x) || std::isnan(r.direction.y) || std::isnan(r.direction.z));
+    for (int a = 0; a < 3; ++a) {
+      const T d = r.direction[a];
+      const bool negative = std::signbit(d);
+      near_row[a] = negative ? 3 + a : a;
+      far_row[a] = negative ? a : 3 + a;
+      const T inv = T(1) / d;
+      inv_direction[a] = static_cast<float>(inv);
+      if (d != T(0) && !(std::abs(inv) >= T(std::numeric_limits<float>::min()) &&
+                         std::abs(inv) <= T(std::numeric_limits<float>::max())))
+        exact = false;
+      near_origin[a] = negative ? float_down(r.origin[a]) : float_up(r.origin[a]);
+      far_origin[a] = negative ? float_up(r.origin[a]) : float_down(r.origin[a]);
+    }
+  }
+};
+// [end]
+
+// [listing fast-slab]
+// The slab test of a node's four child boxes at once: the same few operations on four lanes,
+// one SSE instruction each on x86-64 (SSE2 is part of x86-64, so any such processor runs it;
+// GCC did not vectorise the plain loop, which other machines use and which gives the same
+// results). A zero direction component gives inv = +-inf: the slab is then (-inf, inf) or empty,
+// except for an origin exactly in its plane, where 0 * inf = NaN; max and min below return their
+// second operand when the first is NaN, so a NaN keeps the slab open: the careful side. The far t
+// is widened by 1 + 2 gamma(4), once for all three axes (a positive factor commutes with the
+// minimum): aabb.hpp's gamma(3) for the subtraction, the reciprocal and the product, and one
+// more for a double reciprocal rounded to float. An unused slot is left out by its empty box
+// (lo > hi), not by its slabs: an origin beyond float's range is infinite in float, and
+// inf - inf = NaN would keep them open. Returns a bit mask of the boxes hit and their entry t.
+inline unsigned hit_boxes4(const bvh_node4& n, const box4_ray& r, float t_min, float t_max,
+                           float (&t_enter)[4]) {
+  constexpr float widen = 1.0f + 2.0f * gamma<float>(4);
+#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)  // the same operations, four lanes at once
+  __m128 t0 = _mm_set1_ps(t_min), t1 = _mm_set1_ps(infinity<float>);
+  for (int a = 0; a < 3; ++a) {
+    const __m128 inv = _mm_set1_ps(r.inv_direction[a]);
+    const __m128 on = _mm_set1_ps(r.near_origin[a]), of = _mm_set1_ps(r.far_origin[a]);
+    const __m128 tn = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[r.near_row[a]]), on), inv);
+    const __m128 tf = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[r.far_row[a]]), of), inv);
+    t0 = _mm_max_ps(tn, t0);  // tn > t0 ? tn : t0, so a NaN tn leaves t0
+    t1 = _mm_min_ps(tf, t1);  // tf < t1 ? tf : t1
+  }
+  _mm_storeu_ps(t_enter, t0);
+  const __m128 used = _mm_cmple_ps(_mm_load_ps(n.box[0]), _mm_load_ps(n.box[3]));
+  const __m128 hit = _mm_and_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(widen))),
+                                _mm_and_ps(_mm_cmple_ps(t0, _mm_set1_ps(t_max)), used));
+  return unsigned(_mm_movemask_ps(hit));
+#else
+  float t0[4], t1[4];
+  for (int k = 0; k < 4; ++k) t0[k] = t_min, t1[k] = infinity<float>;
+  for (int a = 0; a < 3; ++a) {
+    const float inv = r.inv_direction[a];
+    const float* near_side = n.box[r.near_row[a]];
+    const float* far_side = n.box[r.far_row[a]];
+    for (int k = 0; k < 4; ++k) {
+      const float tn = (near_side[k] - r.near_origin[a]) * inv;
+      const float tf = (far_side[k] - r.far_origin[a]) * inv;
+      t0[k] = tn > t0[k] ? tn : t0[k];
+      t1[k] = tf < t1[k] ? tf : t1[k];
+    }
+  }
+  unsigned mask = 0;
+  for (int k = 0; k < 4; ++k) {
+    t_enter[k] = t0[k];
+    mask |= unsigned(t0[k] <= t1[k] * widen && t0[k] <= t_max && n.box[0][k] <= n.box[3][k]) << k;
+  }
+  return mask;
+#endif
+}
+// [end]
+
+namespace detail {
+// The four children of one wide node are binary nodes; they start as one node's two children.
+template <class T>
+std::uint32_t collapse4_node(const bvh_t<T>& b, std::uint32_t first, std::uint32_t second,
+                             std::vector<bvh_node4>& out) {
+  std::array<std::uint32_t, 4> kids{first, second, 0, 0};
+  int count = 2;
+  while (count < 4) {  // open the inner kid with the largest box
+    int widest = -1;
+    T widest_area = -1;
+    for (int k = 0; k < count; ++k) {
+      const bvh_node_t<T>& n = b.nodes[kids[k]];
+      if (!n.leaf() && n.box.surface_area() > widest_area) {
+        widest = k;
+        widest_area = n.box.surface_area();
+      }
+    }
+    if (widest < 0) break;  // only leaves
+    const std::uint32_t k = kids[std::size_t(widest)];
+    kids[std::size_t(widest)] = k + 1;  // the first child follows its parent
+    kids[std::size_t(count++)] = b.nodes[k].index;  // the second
+  }
+  const auto me = static_cast<std::uint32_t>(out.size());
+  out.emplace_back();
+  for (int a = 0; a < 3; ++a)
+    for (int k = 0; k < 4; ++k) {
+      out[me].box[a][k] = infinity<float>;  // an empty box: unused slot
+      out[me].box[3 + a][k] = -infinity<float>;
+    }
+  for (int k = 0; k < count; ++k) {
+    const bvh_node_t<T>& n = b.nodes[kids[std::size_t(k)]];
+    for (int a = 0; a < 3; ++a) {
+      out[me].box[a][k] = float_down(n.box.lo[a]);
+      out[me].box[3 + a][k] = float_up(n.box.hi[a]);
+    }
+    out[me].count[k] = n.count;
+    out[me].child[k] = n.leaf() ? n.index : collapse4_node(b, kids[std::size_t(k)] + 1, n.index, out);
+  }
+  return me;
+}
+}  // namespace detail
+
+// [listing collapse]
+// The wide nodes of binary tree b, the root's first: a wide node takes the binary node's two
+// children and, while it has fewer than four and one of them is an inner node, replaces the one
+// with the largest box by its two children. Its inner children are collapsed in turn, depth
+// first. Boxes are rounded outward to float. A leaf's entries keep their positions in b.order.
+// Each wide level consumes at least one binary level, so the wide tree is no deeper than b.
+template <class T> std::vector<bvh_node4> collapse4(const bvh_t<T>& b) {
+  if (b.depth > bvh_max_depth)
+    throw error("wide BVH: the tree is " + std::to_string(b.depth) + " levels deep, the traversal stack holds " +
+                std::to_string(bvh_max_depth));
+  std::vector<bvh_node4> out;
+  if (b.empty()) return out;
+  out.reserve(b.nodes.size() / 3 + 1);
+  if (b.nodes[0].leaf()) {  // a root leaf: one wide node with one child
+    auto& n = out.emplace_back();
+    for (int a = 0; a < 3; ++a)
+      for (int k = 0; k < 4; ++k) n.box[a][k] = infinity<float>, n.box[3 + a][k] = -infinity<float>;
+    for (int a = 0; a < 3; ++a) {
+      n.box[a][0] = float_down(b.nodes[0].box.lo[a]);
+      n.box[3 + a][0] = float_up(b.nodes[0].box.hi[a]);
+    }
+    n.child[0] = b.nodes[0].index;
+    n.count[0] = b.nodes[0].count;
+    return out;
+  }
+  detail::collapse4_node(b, 1, b.nodes[0].index, out);
+  return out;
+}
+// [end]
+
+// Entries pushed per wide level: at most three left behind while the fourth is walked.
+constexpr int wide_stack_size = 3 * bvh_max_depth + 4;
+
+// A box's entry t and a primitive's t round differently: a triangle on a box face (a shared edge
+// of two leaves, say) may hit at a t an ulp or two below the box's entry. So a box is passed over
+// only when it starts more than 32 ulps beyond the best hit, and a tie at equal t or a hit an ulp
+// nearer is never lost to the order of the walk.
+constexpr float wide_cull_margin = 1.0f + 0x1p-18f;
+
+namespace detail {
+// The children to visit: those hit, or for a ray that is not exact every child but the unused.
+inline unsigned boxes_to_visit(const bvh_node4& n, const box4_ray& r, float t_min, float t_max, float (&t)[4]) {
+  if (r.exact) return hit_boxes4(n, r, t_min, t_max, t);
+  unsigned mask = 0;
+  for (int k = 0; k < 4; ++k) {
+    t[k] = t_min;
+    mask |= unsigned(n.box[0][k] <= n.box[3][k]) << k;
+  }
+  return mask;
+}
+}  // namespace detail
+
+// [listing wide-traverse]
+// The nearest-hit walk shared by every wide BVH. leaf(first, count, t_cull) tests the entries
+// [first, first + count) of the primitive order and, on a hit, returns true and lowers t_cull
+// (a float no smaller than the best hit's t). Pop the nearest entry; skip it if a hit is already
+// nearer than its box; test a leaf, or a node's four boxes, whose hits are pushed farthest first
+// (nearest on top). A ray that is not `exact` visits every box: slower, never wrong.
+template <class Leaf>
+bool wide_nearest(const std::vector<bvh_node4>& nodes, const box4_ray& r, float t_min, float t_cull,
+                  Leaf&& leaf, bvh_stats* stats = nullptr) {
+  struct entry {
+    std::uint32_t child, count;
+    float t_enter;
+  };
+  if (nodes.empty() || !r.valid) return false;
+  std::array<entry, wide_stack_size> stack;
+  int top = 0;
+  stack[top++] = {0, 0, t_min};
+  bool found = false;
+  while (top > 0) {
+    const entry e = stack[--top];
+    if (e.t_enter > t_cull * wide_cull_margin) continue;
+    if (e.count) {
+      if (leaf(e.child, e.count, t_cull)) found = true;
+      if (stats) stats->primitives += e.count;
+      continue;
+    }
+    const bvh_node4& n = nodes[e.child];
+    float t[4];
+    unsigned mask = detail::boxes_to_visit(n, r, t_min, t_cull * wide_cull_margin, t);
+    if (stats) stats->nodes += 4;
+    const int first = top;
+    for (; mask; mask &= mask - 1) {  // insert each hit child, keeping [first, top) by t
+      const int k = std::countr_zero(mask);
+      int j = top++;
+      for (; j > first && stack[std::size_t(j - 1)].t_enter < t[k]; --j) stack[std::size_t(j)] = stack[std::size_t(j - 1)];
+      stack[std::size_t(j)] = {n.child[k], n.count[k], t[k]};
+#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+      // An inner node: start fetching its two cache lines now (incoherent rays on a million
+      // triangles: 0.48 -> 0.57 of Embree's speed; the leaves' triangles too: no gain).
+      if (n.count[k] == 0) {
+        const char* p = reinterpret_cast<const char*>(&nodes[n.child[k]]);
+        _mm_prefetch(p, _MM_HINT_T0);
+        _mm_prefetch(p + 64, _MM_HINT_T0);
+      }
+#endif
+    }
+  }
+  return found;
+}
+// [end]
+
+// Any hit: leaf(first, count) returns true when an entry blocks the ray; the walk stops there.
+template <class Leaf>
+bool wide_any(const std::vector<bvh_node4>& nodes, const box4_ray& r, float t_min, float t_max, Leaf&& leaf,
+              bvh_stats* stats = nullptr) {
+  struct entry {
+    std::uint32_t child, count;
+  };
+  if (nodes.empty() || !r.valid) return false;
+  std::array<entry, wide_stack_size> stack;
+  int top = 0;
+  stack[top++] = {0, 0};
+  while (top > 0) {
+    const entry e = stack[--top];
+    if (e.count) {
+      if (stats) stats->primitives += e.count;
+      if (leaf(e.child, e.count)) return true;
+      continue;
+    }
+    const bvh_node4& n = nodes[e.child];
+    float t[4];
+    unsigned mask = detail::boxes_to_visit(n, r, t_min, t_max, t);
+    if (stats) stats->nodes += 4;
+    for (; mask; mask &= mask - 1) {
+      const int k = std::countr_zero(mask);
+      stack[std::size_t(top++)] = {n.child[k], n.count[k]};
+    }
+  }
+  return false;
+}
+
+// A wide BVH over any primitives: the wide nodes and bvh.hpp's order of the primitives, the
+// drop-in for bvh_intersect and bvh_occluded (the scene's object BVH uses it).
+struct wide_bvh {
+  std::vector<bvh_node4> nodes;
+  std::vector<std::uint32_t> order;
+  bool empty() const { return nodes.empty(); }
+};
+
+template <class T> wide_bvh make_wide_bvh(const bvh_t<T>& b) { return {collapse4(b), b.order}; }
+
+// The nearest hit, with the contract of bvh_intersect (bvh.hpp): test(i, t_max) intersects
+// primitive i on (t_min, t_max) and, on a hit, shrinks t_max and returns true.
+template <class T, class Test>
+bool wide_intersect(const wide_bvh& w, const ray_t<T>& r, T t_min, T t_max, Test&& test,
+                    bvh_stats* stats = nullptr) {
+  if (w.empty() || !r.valid() || !(t_min < t_max)) return false;
+  const box4_ray br(r);
+  return wide_nearest(
+      w.nodes, br, float_down(t_min), float_up(t_max),
+      [&](std::uint32_t first, std::uint32_t count, float& t_cull) {
+        bool hit = false;
+        for (std::uint32_t k = first; k < first + count; ++k)
+          if (test(w.order[k], t_max)) hit = true;
+        if (hit) t_cull = float_up(t_max);
+        return hit;
+      },
+      stats);
+}
+
+// Any hit, with the contract of bvh_occluded: test(i) returns true when primitive i blocks.
+template <class T, class Test>
+bool wide_occluded(const wide_bvh& w, const ray_t<T>& r, T t_min, T t_max, Test&& test,
+                   bvh_stats* stats = nullptr) {
+  if (w.empty() || !r.valid() || !(t_min < t_max)) return false;
+  const box4_ray br(r);
+  return wide_any(
+      w.nodes, br, float_down(t_min), float_up(t_max),
+      [&](std::uint32_t first, std::uint32_t count) {
+        for (std::uint32_t k = first; k < first + count; ++k)
+          if (test(w.order[k])) return true;
+        return false;
+      },
+      stats);
+}
+
+}  // namespace zraka
