@@ -7,11 +7,15 @@
 // Everything is OpenCL 1.2, the version of the kernel language PoCL and most GPUs accept.
 // Handles are owned by small move-only wrappers that release them, so an exception never leaks.
 // Link with OpenCL::OpenCL (needs.txt: OpenCL; a test's first line: // links: OpenCL).
+// Where zraka was built with OpenCL (ZRAKA_COMPILED_OPENCL), the functions marked ZRAKA_OPENCL_FN,
+// here and in realtime.hpp, are compiled once into zraka::compiled, in a unit of their own
+// (src/opencl.cpp), as compiled.hpp explains; header-only they are inline.
 #ifndef CL_TARGET_OPENCL_VERSION
 #define CL_TARGET_OPENCL_VERSION 120
 #endif
 #if __has_include(<CL/cl.h>)  // without the headers this header is empty (the chapter is skipped)
 #include <CL/cl.h>
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/resources.hpp>
 
@@ -23,11 +27,26 @@
 #include <utility>
 #include <vector>
 
+#if defined(ZRAKA_COMPILED_OPENCL)
+#define ZRAKA_OPENCL_FN
+#else
+#define ZRAKA_OPENCL_FN inline
+#endif
+#if !defined(ZRAKA_COMPILED_OPENCL) || defined(ZRAKA_COMPILING_OPENCL)  // src/opencl.cpp
+#define ZRAKA_OPENCL_DEFINITIONS 1
+#else
+#define ZRAKA_OPENCL_DEFINITIONS 0
+#endif
+
 namespace zraka::cl {
 
+ZRAKA_OPENCL_FN std::string error_name(cl_int code);
+ZRAKA_OPENCL_FN void check(cl_int code, const std::string& what);
+
+#if ZRAKA_OPENCL_DEFINITIONS
 // [listing cl-errors]
 // The names of the codes a student meets most; the number is always printed too.
-inline std::string error_name(cl_int code) {
+ZRAKA_OPENCL_FN std::string error_name(cl_int code) {
   switch (code) {
     case CL_SUCCESS: return "CL_SUCCESS";
     case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
@@ -55,11 +74,12 @@ inline std::string error_name(cl_int code) {
   }
 }
 
-inline void check(cl_int code, const std::string& what) {
+ZRAKA_OPENCL_FN void check(cl_int code, const std::string& what) {
   if (code != CL_SUCCESS)
     throw error(what + " failed: " + error_name(code) + " (" + std::to_string(code) + ")");
 }
 // [end]
+#endif
 
 // No platform at all: no ICD installed (e.g. pocl-opencl-icd), or none registered in
 // /etc/OpenCL/vendors. Programs may catch this one to fall back or to skip.
@@ -104,7 +124,10 @@ using kernel_handle = handle<cl_kernel, clReleaseKernel>;
 using buffer = handle<cl_mem, clReleaseMemObject>;
 
 namespace detail {
-inline std::string platform_string(cl_platform_id p, cl_platform_info what) {
+ZRAKA_OPENCL_FN std::string platform_string(cl_platform_id p, cl_platform_info what);
+ZRAKA_OPENCL_FN std::string device_string(cl_device_id d, cl_device_info what);
+#if ZRAKA_OPENCL_DEFINITIONS
+ZRAKA_OPENCL_FN std::string platform_string(cl_platform_id p, cl_platform_info what) {
   std::size_t n = 0;
   check(clGetPlatformInfo(p, what, 0, nullptr, &n), "clGetPlatformInfo");
   std::string s(n, '\0');
@@ -112,7 +135,7 @@ inline std::string platform_string(cl_platform_id p, cl_platform_info what) {
   while (!s.empty() && s.back() == '\0') s.pop_back();
   return s;
 }
-inline std::string device_string(cl_device_id d, cl_device_info what) {
+ZRAKA_OPENCL_FN std::string device_string(cl_device_id d, cl_device_info what) {
   std::size_t n = 0;
   check(clGetDeviceInfo(d, what, 0, nullptr, &n), "clGetDeviceInfo");
   std::string s(n, '\0');
@@ -120,6 +143,7 @@ inline std::string device_string(cl_device_id d, cl_device_info what) {
   while (!s.empty() && s.back() == '\0') s.pop_back();
   return s;
 }
+#endif
 template <class V> V device_value(cl_device_id d, cl_device_info what) {
   V v{};
   check(clGetDeviceInfo(d, what, sizeof(V), &v, nullptr), "clGetDeviceInfo");
@@ -136,9 +160,13 @@ struct device_info {
   bool fp64 = false;
 };
 
+ZRAKA_OPENCL_FN std::vector<device_info> list_devices();
+ZRAKA_OPENCL_FN device_info pick_device(int index);
+
+#if ZRAKA_OPENCL_DEFINITIONS
 // [listing cl-devices]
 // Every device of every platform, numbered in this order (that number is --device).
-inline std::vector<device_info> list_devices() {
+ZRAKA_OPENCL_FN std::vector<device_info> list_devices() {
   cl_uint n_platforms = 0;
   const cl_int rc = clGetPlatformIDs(0, nullptr, &n_platforms);
   if (rc == -1001 || (rc == CL_SUCCESS && n_platforms == 0)) throw no_platform();
@@ -167,7 +195,7 @@ inline std::vector<device_info> list_devices() {
   return out;
 }
 
-inline device_info pick_device(int index) {
+ZRAKA_OPENCL_FN device_info pick_device(int index) {
   auto all = list_devices();
   if (all.empty()) throw error("the OpenCL platforms have no devices");
   if (index < 0 || std::size_t(index) >= all.size())
@@ -177,6 +205,7 @@ inline device_info pick_device(int index) {
   return all[std::size_t(index)];
 }
 // [end]
+#endif
 
 // A context on one device and one in-order queue to it (Defs 3.3.3 and 3.3.4: the queue is
 // made from the context *and* the device, errata D3).
@@ -185,25 +214,9 @@ struct context {
   context_handle ctx;
   queue_handle queue;
 
-  explicit context(device_info d) : device(std::move(d)) {
-    cl_int rc = CL_SUCCESS;
-    ctx = context_handle(clCreateContext(nullptr, 1, &device.device, nullptr, nullptr, &rc));
-    check(rc, "clCreateContext");
-    // clCreateCommandQueue is the 1.2 call; 2.0 renamed it, and PoCL accepts both.
-    queue = queue_handle(clCreateCommandQueue(ctx.get(), device.device, 0, &rc));
-    check(rc, "clCreateCommandQueue");
-  }
-
-  // [listing cl-buffer]
-  // A device buffer; with host data it is copied at creation (CL_MEM_COPY_HOST_PTR, errata B13).
-  buffer make_buffer(cl_mem_flags flags, std::size_t bytes, const void* host = nullptr) const {
-    if (host) flags |= CL_MEM_COPY_HOST_PTR;
-    cl_int rc = CL_SUCCESS;
-    buffer b(clCreateBuffer(ctx.get(), flags, bytes, const_cast<void*>(host), &rc));
-    check(rc, "clCreateBuffer (" + std::to_string(bytes) + " bytes)");
-    return b;
-  }
-  // [end]
+  explicit context(device_info d);
+  // A device buffer, filled with `bytes` of host data when host is given.
+  buffer make_buffer(cl_mem_flags flags, std::size_t bytes, const void* host = nullptr) const;
   void read(const buffer& b, std::size_t bytes, void* host) const {
     check(clEnqueueReadBuffer(queue.get(), b.get(), CL_TRUE, 0, bytes, host, 0, nullptr, nullptr),
           "clEnqueueReadBuffer");
@@ -215,8 +228,33 @@ struct context {
   void finish() const { check(clFinish(queue.get()), "clFinish"); }
 };
 
+ZRAKA_OPENCL_FN std::string read_kernel_file(const std::filesystem::path& file);
+ZRAKA_OPENCL_FN program_handle build_program_files(const context& c, const std::vector<std::filesystem::path>& files,
+                                                   const std::string& options = "");
+
+#if ZRAKA_OPENCL_DEFINITIONS
+ZRAKA_OPENCL_FN context::context(device_info d) : device(std::move(d)) {
+  cl_int rc = CL_SUCCESS;
+  ctx = context_handle(clCreateContext(nullptr, 1, &device.device, nullptr, nullptr, &rc));
+  check(rc, "clCreateContext");
+  // clCreateCommandQueue is the 1.2 call; 2.0 renamed it, and PoCL accepts both.
+  queue = queue_handle(clCreateCommandQueue(ctx.get(), device.device, 0, &rc));
+  check(rc, "clCreateCommandQueue");
+}
+
+// [listing cl-buffer]
+// A device buffer; with host data it is copied at creation (CL_MEM_COPY_HOST_PTR, errata B13).
+ZRAKA_OPENCL_FN buffer context::make_buffer(cl_mem_flags flags, std::size_t bytes, const void* host) const {
+  if (host) flags |= CL_MEM_COPY_HOST_PTR;
+  cl_int rc = CL_SUCCESS;
+  buffer b(clCreateBuffer(ctx.get(), flags, bytes, const_cast<void*>(host), &rc));
+  check(rc, "clCreateBuffer (" + std::to_string(bytes) + " bytes)");
+  return b;
+}
+// [end]
+
 // The text of a kernel file, found through the resource root ("kernels/x.cl").
-inline std::string read_kernel_file(const std::filesystem::path& file) {
+ZRAKA_OPENCL_FN std::string read_kernel_file(const std::filesystem::path& file) {
   const auto path = resource_path(file.string());
   std::ifstream in(path, std::ios::binary);
   if (!in) throw error("cannot open kernel file " + path.string());
@@ -230,9 +268,9 @@ inline std::string read_kernel_file(const std::filesystem::path& file) {
 // that uses it). Each file starts with a #line directive, so the compiler's messages name the
 // real file and line. On failure the error holds every file name, the options and the full log.
 // PoCL caches binaries by source text and options: set POCL_KERNEL_CACHE=0 while editing.
-inline program_handle build_program_files(const context& c,
-                                          const std::vector<std::filesystem::path>& files,
-                                          const std::string& options = "") {
+ZRAKA_OPENCL_FN program_handle build_program_files(const context& c,
+                                                   const std::vector<std::filesystem::path>& files,
+                                                   const std::string& options) {
   std::vector<std::string> texts;
   std::string names;
   for (const auto& f : files) {
@@ -266,6 +304,7 @@ inline program_handle build_program_files(const context& c,
   return prog;
 }
 // [end]
+#endif
 
 inline program_handle build_program(const context& c, const std::filesystem::path& file,
                                     const std::string& options = "") {

@@ -9,7 +9,8 @@
 // export (mitsuba_export.hpp). Scene files (scene_file.hpp) and PLY/glTF meshes (mesh_file.hpp)
 // follow the same pattern under their own macros, ZRAKA_COMPILED_SCENE_FILE and
 // ZRAKA_COMPILED_MESH_FILE, defined when zraka was built with yaml-cpp and assimp, and so does the
-// preview window of --window (preview_window.hpp, ZRAKA_COMPILED_PREVIEW, with GLFW and libepoxy).
+// preview window of --window and gl.hpp's shaders (ZRAKA_COMPILED_GL, with GLFW and libepoxy),
+// and the OpenCL host side of cl.hpp and realtime.hpp (ZRAKA_COMPILED_OPENCL, with OpenCL).
 // Part 6's mis reference (reference.hpp) is compiled with the scene files, in src/reference.cpp.
 // Their functions are marked ZRAKA_COMPILED_FN:
 //   - linking the library zraka::compiled (src/compiled.cpp, built and installed with zraka) defines

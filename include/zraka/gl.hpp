@@ -4,10 +4,14 @@
 // and a screenshot of the framebuffer as a zraka::image. Function pointers come from libepoxy,
 // which loads them on first use, so there is no loader to initialise.
 // Link with glfw and epoxy (needs.txt: glfw, epoxy).
+// Where zraka was built with both (ZRAKA_COMPILED_GL), the functions marked ZRAKA_GL_FN are
+// compiled once into zraka::compiled, in a unit of their own (src/gl.cpp), as compiled.hpp
+// explains; header-only they are inline.
 #if __has_include(<epoxy/gl.h>) && __has_include(<GLFW/glfw3.h>)  // else empty (chapter skipped)
 #include <epoxy/gl.h>  // before GLFW, which then includes no GL header of its own
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
 #include <zraka/image_io.hpp>
@@ -23,6 +27,17 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#if defined(ZRAKA_COMPILED_GL)
+#define ZRAKA_GL_FN
+#else
+#define ZRAKA_GL_FN inline
+#endif
+#if !defined(ZRAKA_COMPILED_GL) || defined(ZRAKA_COMPILING_GL)  // src/gl.cpp
+#define ZRAKA_GL_DEFINITIONS 1
+#else
+#define ZRAKA_GL_DEFINITIONS 0
+#endif
 
 namespace zraka::gl {
 
@@ -91,10 +106,14 @@ inline std::string gl_string(GLenum what) {
   return s ? s : "?";
 }
 
+ZRAKA_GL_FN GLuint compile_shader(GLenum stage, const std::filesystem::path& file);
+ZRAKA_GL_FN GLuint link_program(const std::vector<std::pair<GLenum, std::filesystem::path>>& stages);
+
+#if ZRAKA_GL_DEFINITIONS
 // [listing gl-shaders]
 // Steps 4-5: load one shader stage from a file (through the resource root) and compile it.
 // A failure names the file and carries the compiler's log.
-inline GLuint compile_shader(GLenum stage, const std::filesystem::path& file) {
+ZRAKA_GL_FN GLuint compile_shader(GLenum stage, const std::filesystem::path& file) {
   const auto path = resource_path(file.string());
   std::ifstream in(path, std::ios::binary);
   if (!in) throw error("cannot open shader file " + path.string());
@@ -120,7 +139,7 @@ inline GLuint compile_shader(GLenum stage, const std::filesystem::path& file) {
 }
 
 // Step 6: link the stages into one program; the shader objects are not needed after that.
-inline GLuint link_program(const std::vector<std::pair<GLenum, std::filesystem::path>>& stages) {
+ZRAKA_GL_FN GLuint link_program(const std::vector<std::pair<GLenum, std::filesystem::path>>& stages) {
   std::vector<GLuint> shaders;
   std::string names;
   try {
@@ -149,6 +168,7 @@ inline GLuint link_program(const std::vector<std::pair<GLenum, std::filesystem::
   return program;
 }
 // [end]
+#endif
 
 // The uniform's location; a name the linker removed (unused) or misspelt is an error here,
 // not a silent -1 that makes glUniform* do nothing.

@@ -24,17 +24,7 @@ ZRAKA_COMPILED_FN scene spheres_scene();
 // inside. Every path sees L_e at each bounce, weighted a^k, so L = L_e (1 + a + a^2 + ...) =
 // L_e / (1 - a), or L_e (1 - a^(D+1)) / (1 - a) when paths stop after D bounces.
 constexpr double furnace_albedo = 0.5, furnace_Le = 1.0;
-inline scene furnace_scene() {
-  scene sc;
-  material m = material::lambertian(rgb(float(furnace_albedo)));
-  m.radiance = rgb(float(furnace_Le));
-  m.two_sided = true;  // it glows towards the inside, where the camera is
-  sc.add(sphere{{0, 0, 0}, 1}, sc.add_material(m));
-  sc.camera.position = {0.2, -0.1, 0.3};
-  sc.camera.look_at = {0, 0, -1};
-  sc.settings.width = sc.settings.height = 64;
-  return sc;
-}
+ZRAKA_COMPILED_FN scene furnace_scene();
 
 struct named_scene {
   std::string_view name;
@@ -86,6 +76,18 @@ inline scene builtin_scene(std::string_view name) {
 }
 
 #if ZRAKA_COMPILED_DEFINITIONS  // compiled.hpp
+ZRAKA_COMPILED_FN scene furnace_scene() {
+  scene sc;
+  material m = material::lambertian(rgb(float(furnace_albedo)));
+  m.radiance = rgb(float(furnace_Le));
+  m.two_sided = true;  // it glows towards the inside, where the camera is
+  sc.add(sphere{{0, 0, 0}, 1}, sc.add_material(m));
+  sc.camera.position = {0.2, -0.1, 0.3};
+  sc.camera.look_at = {0, 0, -1};
+  sc.settings.width = sc.settings.height = 64;
+  return sc;
+}
+
 // [listing spheres-scene]
 ZRAKA_COMPILED_FN scene spheres_scene() {
   scene sc;

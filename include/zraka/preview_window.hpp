@@ -7,7 +7,7 @@
 // passes: the render pays one texture upload per pass, and no thread of its own.
 //
 // The GL side (gl.hpp: GLFW and libepoxy) is compiled once into zraka::compiled where zraka was
-// built with both (ZRAKA_COMPILED_PREVIEW), in a unit of its own (src/preview_window.cpp), so only
+// built with both (ZRAKA_COMPILED_GL), in a unit of its own (src/preview_window.cpp), so only
 // a program that opens a preview links GLFW, and no chapter's unit reads the GL headers.
 // Header-only, this header includes gl.hpp and the program links glfw and epoxy (README.md's
 // table). A zraka built without them refuses --window by name.
@@ -19,18 +19,18 @@
 #include <filesystem>
 #include <memory>
 
-#if defined(ZRAKA_COMPILED_PREVIEW)
+#if defined(ZRAKA_COMPILED_GL)
 #define ZRAKA_PREVIEW_FN
 #else
 #define ZRAKA_PREVIEW_FN inline
 #endif
-#if !defined(ZRAKA_COMPILED_PREVIEW) || defined(ZRAKA_COMPILING_PREVIEW)  // src/preview_window.cpp
+#if !defined(ZRAKA_COMPILED_GL) || defined(ZRAKA_COMPILING_PREVIEW)  // src/preview_window.cpp
 #define ZRAKA_PREVIEW_DEFINITIONS 1
 #else
 #define ZRAKA_PREVIEW_DEFINITIONS 0
 #endif
 // Whether the definitions can open a window at all.
-#if defined(ZRAKA_COMPILED_PREVIEW) || \
+#if defined(ZRAKA_COMPILED_GL) || \
     (!defined(ZRAKA_COMPILED) && __has_include(<epoxy/gl.h>) && __has_include(<GLFW/glfw3.h>))
 #define ZRAKA_PREVIEW_GL 1
 #else

@@ -41,36 +41,7 @@ class gpu_renderer {
   // kernel_file: another kernel with the same interface (or a broken one, to see the build log).
   gpu_renderer(const cl::context& c, const gpu_scene& s, int width, int height, std::uint64_t seed,
                bool all_features = false,
-               const std::filesystem::path& kernel_file = "kernels/pathtrace.cl")
-      : ctx_(c), width_(width), height_(height), seed_(seed), scene_(s) {
-    if (width < 1 || height < 1 || width > 16384 || height > 16384)
-      throw error("image size " + std::to_string(width) + "x" + std::to_string(height) +
-                  " is out of range (1..16384)");
-    options_ = build_options(s.features, all_features);
-    stopwatch clock;
-    program_ = cl::build_program_files(c, {"kernels/rng.cl", kernel_file}, options_);
-    kernel_ = cl::make_kernel(program_, "render");
-    build_seconds_ = clock.seconds();
-    spheres_ = upload(s.spheres);
-    quads_ = upload(s.quads);
-    planes_ = upload(s.planes);
-    tris_ = upload(s.triangles);
-    nodes_ = upload(s.nodes);
-    materials_ = upload(s.materials);
-    lights_ = upload(s.lights);
-    light_tris_ = upload(s.light_triangles);
-    textures_ = upload(s.textures);
-    texels_ = upload(s.texels);
-    tri_uvs_ = upload(s.triangle_uvs);
-    env_ = c.make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_environment), &s.environment);
-    env_tables_ = upload(s.env_tables);
-    noise_ = upload(s.noise_permutation);
-    camera_ = c.make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_camera), &s.camera);
-    const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    accum_ = c.make_buffer(CL_MEM_READ_WRITE, pixels * 16);
-    accum_sq_ = c.make_buffer(CL_MEM_READ_WRITE, pixels * 16);
-    display_ = c.make_buffer(CL_MEM_WRITE_ONLY, pixels * 4);
-  }
+               const std::filesystem::path& kernel_file = "kernels/pathtrace.cl");
 
   const std::string& options() const { return options_; }
   double build_seconds() const { return build_seconds_; }
@@ -110,15 +81,7 @@ class gpu_renderer {
   }
   // The same without waiting: the copy is queued behind the launches, and wait_display() blocks
   // until it is done. The viewer draws frame k while the device renders frame k + 1.
-  void read_display_async(std::vector<std::uint8_t>& rgba) {
-    rgba.resize(std::size_t(width_) * std::size_t(height_) * 4);
-    cl_event e = nullptr;
-    cl::check(clEnqueueReadBuffer(ctx_.queue.get(), display_.get(), CL_FALSE, 0, rgba.size(),
-                                  rgba.data(), 0, nullptr, &e),
-              "clEnqueueReadBuffer");
-    pending_ = event_handle(e);
-    cl::check(clFlush(ctx_.queue.get()), "clFlush");
-  }
+  void read_display_async(std::vector<std::uint8_t>& rgba);
   void wait_display() {
     if (!pending_) return;
     const cl_event e = pending_.get();
@@ -127,40 +90,11 @@ class gpu_renderer {
   }
 
   // The running mean in linear floats, top row first (zraka::image's order).
-  image read_image() const {
-    std::vector<float> sums(std::size_t(width_) * std::size_t(height_) * 4);
-    ctx_.read(accum_, sums.size() * sizeof(float), sums.data());
-    image img(width_, height_);
-    for (int y = 0; y < height_; ++y)
-      for (int x = 0; x < width_; ++x) {
-        const float* p = &sums[4 * (std::size_t(y) * std::size_t(width_) + std::size_t(x))];
-        const float n = p[3] > 0 ? p[3] : 1.0f;
-        img.at(x, y) = rgb(p[0] / n, p[1] / n, p[2] / n);
-      }
-    return img;
-  }
+  image read_image() const;
 
   // Each pixel's sample variance (unbiased, per channel) from the sums of the samples and of
   // their squares, top row first: the standard error of a pixel is sqrt(variance / samples()).
-  image read_variance() const {
-    const std::size_t n = std::size_t(width_) * std::size_t(height_) * 4;
-    std::vector<float> sums(n), squares(n);
-    ctx_.read(accum_, n * sizeof(float), sums.data());
-    ctx_.read(accum_sq_, n * sizeof(float), squares.data());
-    image img(width_, height_);
-    for (int y = 0; y < height_; ++y)
-      for (int x = 0; x < width_; ++x) {
-        const std::size_t i = 4 * (std::size_t(y) * std::size_t(width_) + std::size_t(x));
-        const double k = sums[i + 3];
-        rgb v(0);
-        for (int c = 0; c < 3 && k > 1; ++c) {
-          const double mean = sums[i + std::size_t(c)] / k;
-          v[c] = float(std::max(0.0, (squares[i + std::size_t(c)] - k * mean * mean) / (k - 1)));
-        }
-        img.at(x, y) = v;
-      }
-    return img;
-  }
+  image read_variance() const;
 
  private:
   // An empty array still needs a buffer to pass (OpenCL has no zero-size buffers): one zeroed
@@ -187,6 +121,84 @@ class gpu_renderer {
   using event_handle = cl::handle<cl_event, clReleaseEvent>;
   event_handle pending_;
 };
+
+#if ZRAKA_OPENCL_DEFINITIONS
+ZRAKA_OPENCL_FN gpu_renderer::gpu_renderer(const cl::context& c, const gpu_scene& s, int width, int height,
+                                           std::uint64_t seed, bool all_features,
+                                           const std::filesystem::path& kernel_file)
+    : ctx_(c), width_(width), height_(height), seed_(seed), scene_(s) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw error("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                " is out of range (1..16384)");
+  options_ = build_options(s.features, all_features);
+  stopwatch clock;
+  program_ = cl::build_program_files(c, {"kernels/rng.cl", kernel_file}, options_);
+  kernel_ = cl::make_kernel(program_, "render");
+  build_seconds_ = clock.seconds();
+  spheres_ = upload(s.spheres);
+  quads_ = upload(s.quads);
+  planes_ = upload(s.planes);
+  tris_ = upload(s.triangles);
+  nodes_ = upload(s.nodes);
+  materials_ = upload(s.materials);
+  lights_ = upload(s.lights);
+  light_tris_ = upload(s.light_triangles);
+  textures_ = upload(s.textures);
+  texels_ = upload(s.texels);
+  tri_uvs_ = upload(s.triangle_uvs);
+  env_ = c.make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_environment), &s.environment);
+  env_tables_ = upload(s.env_tables);
+  noise_ = upload(s.noise_permutation);
+  camera_ = c.make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_camera), &s.camera);
+  const std::size_t pixels = std::size_t(width) * std::size_t(height);
+  accum_ = c.make_buffer(CL_MEM_READ_WRITE, pixels * 16);
+  accum_sq_ = c.make_buffer(CL_MEM_READ_WRITE, pixels * 16);
+  display_ = c.make_buffer(CL_MEM_WRITE_ONLY, pixels * 4);
+}
+
+ZRAKA_OPENCL_FN void gpu_renderer::read_display_async(std::vector<std::uint8_t>& rgba) {
+  rgba.resize(std::size_t(width_) * std::size_t(height_) * 4);
+  cl_event e = nullptr;
+  cl::check(clEnqueueReadBuffer(ctx_.queue.get(), display_.get(), CL_FALSE, 0, rgba.size(),
+                                rgba.data(), 0, nullptr, &e),
+            "clEnqueueReadBuffer");
+  pending_ = event_handle(e);
+  cl::check(clFlush(ctx_.queue.get()), "clFlush");
+}
+
+ZRAKA_OPENCL_FN image gpu_renderer::read_image() const {
+  std::vector<float> sums(std::size_t(width_) * std::size_t(height_) * 4);
+  ctx_.read(accum_, sums.size() * sizeof(float), sums.data());
+  image img(width_, height_);
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x) {
+      const float* p = &sums[4 * (std::size_t(y) * std::size_t(width_) + std::size_t(x))];
+      const float n = p[3] > 0 ? p[3] : 1.0f;
+      img.at(x, y) = rgb(p[0] / n, p[1] / n, p[2] / n);
+    }
+  return img;
+}
+
+ZRAKA_OPENCL_FN image gpu_renderer::read_variance() const {
+  const std::size_t n = std::size_t(width_) * std::size_t(height_) * 4;
+  std::vector<float> sums(n), squares(n);
+  ctx_.read(accum_, n * sizeof(float), sums.data());
+  ctx_.read(accum_sq_, n * sizeof(float), squares.data());
+  image img(width_, height_);
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x) {
+      const std::size_t i = 4 * (std::size_t(y) * std::size_t(width_) + std::size_t(x));
+      const double k = sums[i + 3];
+      rgb v(0);
+      for (int c = 0; c < 3 && k > 1; ++c) {
+        const double mean = sums[i + std::size_t(c)] / k;
+        v[c] = float(std::max(0.0, (squares[i + std::size_t(c)] - k * mean * mean) / (k - 1)));
+      }
+      img.at(x, y) = v;
+    }
+  return img;
+}
+#endif
 
 }  // namespace zraka
 #endif
