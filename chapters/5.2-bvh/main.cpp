@@ -74,7 +74,7 @@ measurement measure(const triangle_bvh& bvh, const std::vector<rayf>& rays, cons
   m.triangles_per_ray = double(total.primitives) / double(rays.size());
 
   // Brute force on an evenly spread subset when all rays would exceed the test budget.
-  const double n = double(std::max<std::size_t>(1, bvh.triangles().size()));
+  const double n = double(std::max<std::size_t>(1, bvh.triangle_count()));
   m.brute_rays = int(std::clamp(s.brute_tests / n, 16.0, double(rays.size())));
   const std::size_t stride = rays.size() / std::size_t(m.brute_rays);
   std::vector<triangle_bvh_hit> brute(std::size_t(m.brute_rays));
