@@ -211,39 +211,52 @@ class triangle_bvh {
 
   // [listing block-test]
   // The four triangles of block q, as test() would take them one after the other: the four-lane
-  // test (watertight4.hpp) finds the lanes hit, with their t, u and v; each, in lane order, is
-  // then accepted or not by test()'s own rules (the interval with the tie, the certainty of t > 0,
-  // which look at the hit found so far); a lane whose edge function rounded to 0 is tested by
-  // test() itself. Without the four-lane test, test() on each lane.
+  // test (watertight4.hpp) finds the lanes hit, with their t, u and v, and the lanes whose edge
+  // function rounded to 0. Without the four-lane test, test() on each lane.
   template <class Ray4>
   bool test_block(const triangle4& q, std::size_t position, const bvh_ray& r, const Ray4& r4, float t_min,
                   float t_max, triangle_bvh_hit& h) const {
-    bool found = false;
 #if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
     if constexpr (detail::watertight4_available) {
       // A lane can only be accepted with t < t_max or at a tie with the hit so far.
       const float bound = h.triangle != UINT32_MAX ? std::max(t_max, h.t) : t_max;
-      float t[4], u[4], v[4];
-      unsigned scalar;
-      unsigned lanes = detail::watertight_test4(r4, q, t_min, bound, t, u, v, scalar);
-      for (lanes |= scalar; lanes; lanes &= lanes - 1) {
-        const int k = std::countr_zero(lanes);
-        const packed_triangle tri = triangle(position + std::size_t(k));
-        if ((scalar >> k) & 1u ? test(tri, r, t_min, t_max, h) : accept(tri, r, t_min, t_max, t[k], u[k], v[k], h)) {
-          found = true;
-          t_max = h.t;
-        }
-      }
-      return found;
+      lanes4 l;
+      l.hit = detail::watertight_test4(r4, q, t_min, bound, l.t, l.u, l.v, l.scalar);
+      return (l.hit | l.scalar) != 0 && accept_lanes(l, position, r, t_min, t_max, h);
     }
 #endif
-    {
-      for (std::size_t k = 0; k < 4; ++k) {
-        const packed_triangle tri = triangle(position + k);
-        if (tri.id != UINT32_MAX && test(tri, r, t_min, t_max, h)) {
-          found = true;
-          t_max = h.t;
-        }
+    bool found = false;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const packed_triangle tri = triangle(position + k);
+      if (tri.id != UINT32_MAX && test(tri, r, t_min, t_max, h)) {
+        found = true;
+        t_max = h.t;
+      }
+    }
+    return found;
+  }
+  // What the four-lane test found in a block: the lanes hit and their t, u, v; the lanes left to
+  // test().
+  struct lanes4 {
+    float t[4], u[4], v[4];
+    unsigned hit, scalar;
+  };
+  // Each lane found, in lane order, accepted or not by test()'s own rules (the interval with the
+  // tie, the certainty of t > 0, which look at the hit found so far), or tested by test() itself.
+  // A call, not inlined: most blocks have no lane to accept, and the walk's loop keeps its
+  // registers (5 % faster).
+#if defined(__GNUC__)
+  [[gnu::noinline]]
+#endif
+  bool accept_lanes(const lanes4& l, std::size_t position, const bvh_ray& r, float t_min, float t_max,
+                    triangle_bvh_hit& h) const {
+    bool found = false;
+    for (unsigned lanes = l.hit | l.scalar; lanes; lanes &= lanes - 1) {
+      const int k = std::countr_zero(lanes);
+      const packed_triangle tri = triangle(position + std::size_t(k));
+      if ((l.scalar >> k) & 1u ? test(tri, r, t_min, t_max, h) : accept(tri, r, t_min, t_max, l.t[k], l.u[k], l.v[k], h)) {
+        found = true;
+        t_max = h.t;
       }
     }
     return found;
