@@ -97,9 +97,8 @@ class triangle_bvh {
   const std::vector<triangle4>& blocks() const { return blocks_; }  // in leaf order
   // Triangle k of the blocks (lane k % 4 of block k / 4): a leaf's triangles are the positions
   // [child, child + count) of its node; empty lanes have id UINT32_MAX.
-  packed_triangle triangle(std::size_t k) const {
-    const triangle4& q = blocks_[k / 4];
-    const std::size_t l = k % 4;
+  packed_triangle triangle(std::size_t k) const { return lane(blocks_[k / 4], k % 4); }
+  static packed_triangle lane(const triangle4& q, std::size_t l) {
     return {{q.v[0][l], q.v[1][l], q.v[2][l]}, {q.v[3][l], q.v[4][l], q.v[5][l]},
             {q.v[6][l], q.v[7][l], q.v[8][l]}, q.id[l]};
   }
@@ -214,20 +213,20 @@ class triangle_bvh {
   // test (watertight4.hpp) finds the lanes hit, with their t, u and v, and the lanes whose edge
   // function rounded to 0. Without the four-lane test, test() on each lane.
   template <class Ray4>
-  bool test_block(const triangle4& q, std::size_t position, const bvh_ray& r, const Ray4& r4, float t_min,
-                  float t_max, triangle_bvh_hit& h) const {
+  static bool test_block(const triangle4& q, const bvh_ray& r, [[maybe_unused]] const Ray4& r4, float t_min,
+                         float t_max, triangle_bvh_hit& h) {
 #if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
     if constexpr (detail::watertight4_available) {
       // A lane can only be accepted with t < t_max or at a tie with the hit so far.
       const float bound = h.triangle != UINT32_MAX ? std::max(t_max, h.t) : t_max;
       lanes4 l;
       l.hit = detail::watertight_test4(r4, q, t_min, bound, l.t, l.u, l.v, l.scalar);
-      return (l.hit | l.scalar) != 0 && accept_lanes(l, position, r, t_min, t_max, h);
+      return (l.hit | l.scalar) != 0 && accept_lanes(q, l, r, t_min, t_max, h);
     }
 #endif
     bool found = false;
     for (std::size_t k = 0; k < 4; ++k) {
-      const packed_triangle tri = triangle(position + k);
+      const packed_triangle tri = lane(q, k);
       if (tri.id != UINT32_MAX && test(tri, r, t_min, t_max, h)) {
         found = true;
         t_max = h.t;
@@ -248,12 +247,12 @@ class triangle_bvh {
 #if defined(__GNUC__)
   [[gnu::noinline]]
 #endif
-  bool accept_lanes(const lanes4& l, std::size_t position, const bvh_ray& r, float t_min, float t_max,
-                    triangle_bvh_hit& h) const {
+  static bool accept_lanes(const triangle4& q, const lanes4& l, const bvh_ray& r, float t_min, float t_max,
+                           triangle_bvh_hit& h) {
     bool found = false;
     for (unsigned lanes = l.hit | l.scalar; lanes; lanes &= lanes - 1) {
       const int k = std::countr_zero(lanes);
-      const packed_triangle tri = triangle(position + std::size_t(k));
+      const packed_triangle tri = lane(q, std::size_t(k));
       if ((l.scalar >> k) & 1u ? test(tri, r, t_min, t_max, h) : accept(tri, r, t_min, t_max, l.t[k], l.u[k], l.v[k], h)) {
         found = true;
         t_max = h.t;
@@ -275,7 +274,7 @@ class triangle_bvh {
         [&](std::uint32_t first, std::uint32_t n, float& t_cull) {
           bool found = false;
           for (std::uint32_t k = 0; k < n; k += 4)
-            if (test_block(blocks_[(first + k) / 4], first + k, r, r4, t_min, t_cull, h)) {
+            if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_cull, h)) {
               found = true;
               t_cull = h.t;
             }
@@ -294,7 +293,7 @@ class triangle_bvh {
         [&](std::uint32_t first, std::uint32_t n) {
           for (std::uint32_t k = 0; k < n; k += 4) {
             triangle_bvh_hit ignored;
-            if (test_block(blocks_[(first + k) / 4], first + k, r, r4, t_min, t_max, ignored)) return true;
+            if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_max, ignored)) return true;
           }
           return false;
         },
