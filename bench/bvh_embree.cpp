@@ -125,6 +125,7 @@ int main(int argc, char** argv) {
   app.add_option("--leaf", opt.max_leaf_size, "our BVH: most triangles per leaf");
   app.add_option("--traversal-cost", opt.traversal_cost, "our BVH: SAH cost of a box test (a triangle test = 1)");
   app.add_option("--bins", opt.bins, "our BVH: SAH bins per axis");
+  app.add_option("--leaf-block", opt.leaf_block, "our BVH: SAH prices a leaf by its blocks of this many triangles");
   if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return guarded([&] {

@@ -415,5 +415,42 @@ TEST_CASE("bad build options are refused with a message") {
   o = {};
   o.max_leaf_size = 0;
   CHECK_THROWS_WITH_AS(build_bvh(boxes, o), doctest::Contains("max_leaf_size"), error);
+  o = {};
+  for (const int block : {0, 256}) {
+    o.leaf_block = block;
+    CHECK_THROWS_WITH_AS(build_bvh(boxes, o), doctest::Contains("leaf_block"), error);
+  }
   CHECK_THROWS_AS(build_bvh(boxes, std::vector<vec3>{}), error);
+}
+
+TEST_CASE("leaf_block: leaves priced by blocks fill their blocks, and still equal brute force") {
+  // Triangle BVH leaves are tested four at a time (triangle_bvh.hpp): a leaf of 5 costs two
+  // blocks, like one of 8. Priced so, the SAH leaves few lanes of the last block empty.
+  const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
+  const mesh m = tessellate(patches, 8);
+  std::vector<triangle> tris;
+  for (std::size_t i = 0; i < m.triangle_count(); ++i) tris.push_back(m.triangle(i));
+  auto empty_lanes = [](const bvh_t<double>& b) {
+    std::size_t lanes = 0, used = 0;
+    for (const auto& n : b.nodes)
+      if (n.leaf()) lanes += 4 * ((n.count + 3u) / 4u), used += n.count;
+    return double(lanes - used) / double(lanes);
+  };
+  bvh_build_options by_triangle;
+  by_triangle.max_leaf_size = 16;
+  by_triangle.traversal_cost = 3;
+  bvh_build_options by_block = by_triangle;
+  by_block.leaf_block = 4;
+  const bvh_t<double> a = bvh_of(tris, by_triangle), b = bvh_of(tris, by_block);
+  check_structure(b, tris.size(), 16);
+  MESSAGE("empty lanes: priced by triangles " << empty_lanes(a) << ", by blocks of 4 " << empty_lanes(b));
+  CHECK(empty_lanes(b) < 0.06);
+  CHECK(empty_lanes(b) < 0.5 * empty_lanes(a));
+  rng g(12);
+  CHECK(compare(b, tris.size(), triangles_isect(tris), mixed_rays(g, m.bounds(), 200)) > 50);
+  // A block as large as a leaf: every leaf costs one test, so only the traversal cost and
+  // max_leaf_size bound the leaves.
+  bvh_build_options one_block = by_triangle;
+  one_block.leaf_block = 16;
+  check_structure(bvh_of(tris, one_block), tris.size(), 16);
 }

@@ -8,6 +8,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 
@@ -108,7 +109,9 @@ TEST_CASE("triangles: the triangle BVH's nodes byte for byte, materials by input
   }
   sc.add(m, b);
   const gpu_scene g = pack_scene(sc, 16, 16, depth(8));
-  REQUIRE(g.triangles.size() == 21);
+  // The BVH's positions: 21 triangles and the empty lanes of its blocks of four.
+  REQUIRE(g.triangles.size() >= 21);
+  CHECK(std::count_if(g.triangles.begin(), g.triangles.end(), [](const gpu_triangle& t) { return t.id != UINT32_MAX; }) == 21);
   CHECK(g.features.triangles);
   CHECK(g.features.metal);
   // The same build on the same float triangles gives the same tree: compare the bytes.
@@ -120,7 +123,13 @@ TEST_CASE("triangles: the triangle BVH's nodes byte for byte, materials by input
   const triangle_bvh bvh(tris);
   REQUIRE(g.nodes.size() == bvh.nodes().size());
   CHECK(std::memcmp(g.nodes.data(), bvh.nodes().data(), g.nodes.size() * sizeof(gpu_node4)) == 0);
+  CHECK(g.triangles.size() == bvh.positions());
   for (const gpu_triangle& t : g.triangles) {
+    if (t.id == UINT32_MAX) {  // an empty lane: never read by the kernel, finite zeros
+      CHECK(t.a.x == 0.0f);
+      CHECK(t.light == -1);
+      continue;
+    }
     CHECK(t.material == (t.id == 0 ? a : b));  // input 0 is the lone triangle
     CHECK(t.light == -1);                        // nothing glows
     CHECK(t.a.x == tris[t.id].a.x);
@@ -211,7 +220,8 @@ TEST_CASE("the light table is light_set_t's: power CDF, mesh area CDF, the light
   CHECK(lm.area == doctest::Approx(0.5 + m.triangle(1).area()));
   CHECK(g.light_triangles[std::size_t(lm.first)].a.w == 0.0f);
   CHECK(g.light_triangles[std::size_t(lm.first) + 1].b.w == doctest::Approx(double(lm.area)));
-  for (const gpu_triangle& t : g.triangles) CHECK(t.light == (t.id == 0 ? tri : mesh_light));
+  for (const gpu_triangle& t : g.triangles)
+    CHECK(t.light == (t.id == UINT32_MAX ? -1 : t.id == 0 ? tri : mesh_light));  // -1: an empty lane
   CHECK(g.quads[0].light == -1);
   const std::string o = build_options(g.features);
   CHECK(has(o, "-DHAS_TRIANGLE_LIGHTS"));
@@ -309,7 +319,9 @@ TEST_CASE("image and noise textures: texels as linear floats, a record per textu
   CHECK(n.frequency == 3.0f);
   REQUIRE(g.noise_permutation.size() == 512);
   for (std::size_t i = 0; i < 512; ++i) CHECK(g.noise_permutation[i] == int(detail::noise_permutation()[i]));
-  REQUIRE(g.triangle_uvs.size() == 2);  // the mesh's one triangle: its vertices' (u, v)
+  // Two per BVH position: the mesh's one triangle, its vertices' (u, v), first in its block.
+  REQUIRE(g.triangle_uvs.size() == 2 * g.triangles.size());
+  REQUIRE(g.triangles[0].id == 0);
   CHECK(g.triangle_uvs[0].x == 0.25f);
   CHECK(g.triangle_uvs[0].z == 0.75f);
   CHECK(g.triangle_uvs[1].y == 1.0f);

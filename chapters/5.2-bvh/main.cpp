@@ -74,7 +74,7 @@ measurement measure(const triangle_bvh& bvh, const std::vector<rayf>& rays, cons
   m.triangles_per_ray = double(total.primitives) / double(rays.size());
 
   // Brute force on an evenly spread subset when all rays would exceed the test budget.
-  const double n = double(std::max<std::size_t>(1, bvh.triangles().size()));
+  const double n = double(std::max<std::size_t>(1, bvh.triangle_count()));
   m.brute_rays = int(std::clamp(s.brute_tests / n, 16.0, double(rays.size())));
   const std::size_t stride = rays.size() / std::size_t(m.brute_rays);
   std::vector<triangle_bvh_hit> brute(std::size_t(m.brute_rays));
@@ -149,6 +149,7 @@ int main(int argc, char** argv) {
   cli.app.add_option("--heat-divs", s.heat_divs, "the divs of the heat map (must be one of --divs)");
   cli.app.add_option("--leaf", s.build.max_leaf_size, "most triangles per leaf");
   cli.app.add_option("--traversal-cost", s.build.traversal_cost, "SAH cost of a box test (a triangle test = 1)");
+  cli.app.add_option("--leaf-block", s.build.leaf_block, "SAH prices a leaf by its blocks of this many triangles");
   if (const auto done = cli.parse(argc, argv)) return *done;
   s.width = cli.width, s.height = cli.height, s.seed = cli.seed, s.out = cli.out;
 
@@ -166,8 +167,8 @@ int main(int argc, char** argv) {
     if (std::size_t(s.width) * s.height < 16) throw error("--width x --height must be at least 16 rays");
 
     const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
-    std::printf("teapot: %zu patches; BVH: SAH with %d bins, leaves of at most %d, C_trav %g\n",
-                patches.size(), s.build.bins, s.build.max_leaf_size, s.build.traversal_cost);
+    std::printf("teapot: %zu patches; BVH: SAH with %d bins, leaves of at most %d in blocks of %d, C_trav %g\n",
+                patches.size(), s.build.bins, s.build.max_leaf_size, s.build.leaf_block, s.build.traversal_cost);
     std::printf("rays: camera %dx%d = %d, random %d (origins in the teapot's box grown 20%%)\n\n",
                 s.width, s.height, s.width * s.height, s.random_rays);
     std::printf("%5s %9s %8s %8s %6s %5s | %-6s %9s %8s %8s | %9s %6s %9s %7s\n", "divs",

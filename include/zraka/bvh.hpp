@@ -32,6 +32,8 @@ struct bvh_build_options {
   int bins = 16;               // SAH candidate planes per axis: the borders between bins
   int max_leaf_size = 4;       // a leaf never holds more
   double traversal_cost = 1.0; // C_trav: one box test relative to one primitive test (C_isect = 1)
+  int leaf_block = 1;          // primitives tested this many at a time: a leaf of n costs
+                               // ceil(n / leaf_block) tests (triangle_bvh.hpp's blocks of four)
 };
 
 template <class T> struct bvh_node_t {
@@ -106,12 +108,18 @@ template <class T> class bvh_builder {
     return k;
   }
 
+  // Primitive tests for a leaf of n: n, or its blocks when primitives are tested several at once.
+  T tests(std::uint32_t n) const {
+    const auto b = std::uint32_t(opt_.leaf_block);
+    return T((n + b - 1) / b);
+  }
+
   // [listing sah]
   // The SAH cost of splitting [first, last) at a bin border, in units of one primitive test:
   // C_trav + (A_L N_L + A_R N_R) / A, with A the parent's area. A ray that hits the parent hits
   // a child with probability A_child / A (for uniformly distributed rays), so this is the
   // expected cost of the split if the children become leaves. Compared times A (no division:
-  // a flat parent has A = 0).
+  // a flat parent has A = 0). (N counts tests: blocks of leaf_block primitives, if more than 1.)
   split best_sah_split(std::uint32_t first, std::uint32_t last, const aabb_t<T>& cbox) {
     split best;
     const int nb = opt_.bins;
@@ -158,7 +166,7 @@ template <class T> class bvh_builder {
         acc.grow(axis_bins[j - 1].box);
         n += axis_bins[j - 1].count;
         if (n == 0 || right_count[j] == 0) continue;
-        const T cost = acc.surface_area() * T(n) + right_area[j] * T(right_count[j]);
+        const T cost = acc.surface_area() * tests(n) + right_area[j] * tests(right_count[j]);
         if (cost < best.cost) best = {a, j, cost};
       }
     }
@@ -188,7 +196,7 @@ template <class T> class bvh_builder {
     const split s = (n > 1 && !must_halve) ? best_sah_split(first, last, cbox) : split{};
     const T area = box.surface_area();
     const T split_cost = T(opt_.traversal_cost) * area + s.cost;  // both times A
-    if (n == 1 || (n <= std::uint32_t(opt_.max_leaf_size) && !must_halve && T(n) * area <= split_cost)) {
+    if (n == 1 || (n <= std::uint32_t(opt_.max_leaf_size) && !must_halve && tests(n) * area <= split_cost)) {
       out_.nodes[me].index = first;
       out_.nodes[me].count = static_cast<std::uint16_t>(n);
       return me;
@@ -242,6 +250,8 @@ bvh_t<T> build_bvh(const std::vector<aabb_t<T>>& boxes, const std::vector<vec3_t
     throw error("bvh: bins must be in 2..256, got " + std::to_string(opt.bins));
   if (opt.max_leaf_size < 1 || opt.max_leaf_size > 255)
     throw error("bvh: max_leaf_size must be in 1..255, got " + std::to_string(opt.max_leaf_size));
+  if (opt.leaf_block < 1 || opt.leaf_block > 255)
+    throw error("bvh: leaf_block must be in 1..255, got " + std::to_string(opt.leaf_block));
   if (!(opt.traversal_cost >= 0) || !std::isfinite(opt.traversal_cost))
     throw error("bvh: traversal_cost must be finite and >= 0");
   bvh_t<T> out;

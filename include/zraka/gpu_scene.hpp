@@ -404,10 +404,22 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   }
   if (!tris.empty()) {
     const triangle_bvh bvh(tris);
-    for (const packed_triangle& p : bvh.triangles()) {
-      g.triangles.push_back({to_gpu(p.a), to_gpu(p.b), to_gpu(p.c), p.id,
-                             tri_material[p.id], tri_light[p.id], 0});
-      if (f.image_textures || f.uv_checker) g.triangle_uvs.insert(g.triangle_uvs.end(), tri_uv[p.id].begin(), tri_uv[p.id].end());
+    // The BVH's positions, the empty lanes of its blocks of four included (a leaf's child
+    // indexes them; the kernel reads only a leaf's count, never an empty lane, which gets zeros
+    // rather than the CPU's NaN vertices).
+    for (std::size_t k = 0; k < bvh.positions(); ++k) {
+      const packed_triangle p = bvh.triangle(k);
+      const bool empty = p.id == UINT32_MAX;
+      if (empty) {
+        const gpu_float4 zero{0, 0, 0, 0};
+        g.triangles.push_back({zero, zero, zero, p.id, 0, -1, 0});
+      } else {
+        g.triangles.push_back({to_gpu(p.a), to_gpu(p.b), to_gpu(p.c), p.id, tri_material[p.id], tri_light[p.id], 0});
+      }
+      if (f.image_textures || f.uv_checker) {
+        if (empty) g.triangle_uvs.insert(g.triangle_uvs.end(), 2, gpu_float4{0, 0, 0, 0});
+        else g.triangle_uvs.insert(g.triangle_uvs.end(), tri_uv[p.id].begin(), tri_uv[p.id].end());
+      }
     }
     for (const triangle_bvh_node4& n : bvh.nodes()) {
       gpu_node4 o;

@@ -152,7 +152,8 @@ template <class T> T edge_function(T a, T b, T c, T d) {
 // edge always see the ray on opposite sides of it, or both exactly on it (edges are inclusive).
 // The test is split in its per-ray half (watertight_ray: the permutation and the shear, which
 // the mesh BVH prepares once per ray in bvh_ray) and its per-triangle half (watertight_test),
-// so that triangle_bvh.hpp's leaf calls the very same code and gives the same bits.
+// so that triangle_bvh.hpp's scalar leaf calls the very same code and gives the same bits (its
+// four-lane leaf, watertight4.hpp, repeats watertight_test's operations lane by lane).
 namespace detail {
 // [listing watertight-ray]
 template <class T> struct watertight_ray {

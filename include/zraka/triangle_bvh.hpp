@@ -3,23 +3,29 @@
 // triangles. The tree comes from bvh.hpp's builder (in float), collapsed to four children per
 // node by wide_bvh.hpp, whose box test and front-to-back walk it shares with the scene's object
 // BVH. What is special here is the leaf:
-// * the triangles copied in leaf order as the watertight test (triangle.hpp) wants them: the
-//   vertices A, B, C and the input index, 40 bytes each, so a leaf's triangles are contiguous
-//   in memory;
+// * the triangles copied in leaf order as the watertight test (triangle.hpp) wants them, four to
+//   a block (watertight4.hpp's triangle4: the vertices A, B, C and the input index of each, 40
+//   bytes a triangle), a leaf being whole blocks, its last one filled up with empty lanes;
 // * a ray prepared once (bvh_ray): wide_bvh.hpp's box4_ray and the watertight test's axis
-//   permutation and shear.
+//   permutation and shear;
+// * the watertight test on a block's four triangles at once (watertight4.hpp), where SSE is
+//   there; the scalar test (packed-watertight below) is the reference and the fallback.
 // No allocation per ray (wide_bvh.hpp's fixed stack).
 // Hits report the triangle's index in the input, t and the barycentrics (u, v) of triangle.hpp's
 // convention P = (1-u-v) A + u B + v C, bit for bit what intersect_watertight() gives on the
-// same float triangle (the leaf calls the same two functions); among hits at exactly the same t
-// the lowest index wins, so the result never depends on the tree.
+// same float triangle; among hits at exactly the same t the lowest index wins, so the result
+// never depends on the tree.
 #include <zraka/bvh.hpp>
 #include <zraka/mesh.hpp>
 #include <zraka/triangle.hpp>
+#include <zraka/watertight4.hpp>
 #include <zraka/wide_bvh.hpp>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace zraka {
@@ -40,7 +46,7 @@ struct packed_triangle {
 // [end]
 static_assert(sizeof(packed_triangle) == 40);
 
-// The nodes are wide_bvh.hpp's; a leaf's entries are positions in triangles().
+// The nodes are wide_bvh.hpp's; a leaf's entries are positions in the blocks of four (triangle(k)).
 using triangle_bvh_node4 = bvh_node4;
 
 // [listing bvh-ray]
@@ -60,13 +66,14 @@ struct bvh_ray {
 
 class triangle_bvh {
  public:
-  // Defaults measured on the teapot (book 5.2): leaves of up to 8 and a box test priced at 3
-  // triangle tests give fewer, fuller leaves than bvh.hpp's defaults, 54 instead of 72 bytes
-  // per triangle, at the same speed (within the noise of the benchmark).
+  // Defaults measured on the teapot (book 5.2): the SAH prices a leaf by its blocks of four (a
+  // leaf of 5 costs as much as one of 8), so leaves fill their blocks; leaves of up to 16 and a
+  // box test priced at 3 block tests give the fastest walk and the least memory.
   static bvh_build_options default_options() {
     bvh_build_options o;
-    o.max_leaf_size = 8;
+    o.max_leaf_size = 16;
     o.traversal_cost = 3;
+    o.leaf_block = 4;
     return o;
   }
 
@@ -87,12 +94,21 @@ class triangle_bvh {
   }
 
   const std::vector<triangle_bvh_node4>& nodes() const { return nodes_; }
-  const std::vector<packed_triangle>& triangles() const { return tris_; }  // in leaf order
+  const std::vector<triangle4>& blocks() const { return blocks_; }  // in leaf order
+  // Triangle k of the blocks (lane k % 4 of block k / 4): a leaf's triangles are the positions
+  // [child, child + count) of its node; empty lanes have id UINT32_MAX.
+  packed_triangle triangle(std::size_t k) const { return lane(blocks_[k / 4], k % 4); }
+  static packed_triangle lane(const triangle4& q, std::size_t l) {
+    return {{q.v[0][l], q.v[1][l], q.v[2][l]}, {q.v[3][l], q.v[4][l], q.v[5][l]},
+            {q.v[6][l], q.v[7][l], q.v[8][l]}, q.id[l]};
+  }
+  std::size_t positions() const { return 4 * blocks_.size(); }  // triangles and empty lanes
+  std::size_t triangle_count() const { return triangle_count_; }  // triangles stored
   std::size_t input_count() const { return input_count_; }
   int depth() const { return depth_; }
   // Memory of nodes and triangle data, and that per input triangle.
   std::size_t bytes() const {
-    return nodes_.size() * sizeof(triangle_bvh_node4) + tris_.size() * sizeof(packed_triangle);
+    return nodes_.size() * sizeof(triangle_bvh_node4) + blocks_.size() * sizeof(triangle4);
   }
   double bytes_per_triangle() const {
     return input_count_ ? double(bytes()) / double(input_count_) : 0.0;
@@ -110,18 +126,21 @@ class triangle_bvh {
     return stats ? any<true>(bvh_ray(r), t_min, t_max, stats)
                  : any<false>(bvh_ray(r), t_min, t_max, nullptr);
   }
-  // Every triangle, the same test and the same tie rule: the reference the BVH must equal.
+  // Every triangle, one at a time with the scalar test and the same tie rule: the reference the
+  // BVH and its four-lane leaf must equal.
   bool intersect_brute_force(const ray_t<float>& r, float t_min, float t_max,
                              triangle_bvh_hit& h) const {
     h = {};
     const bvh_ray br(r);
     if (!br.valid) return false;
     bool found = false;
-    for (const packed_triangle& tri : tris_)
-      if (test(tri, br, t_min, t_max, h)) {
+    for (std::size_t k = 0; k < positions(); ++k) {
+      const packed_triangle tri = triangle(k);
+      if (tri.id != UINT32_MAX && test(tri, br, t_min, t_max, h)) {
         found = true;
         t_max = h.t;
       }
+    }
     return found;
   }
 
@@ -143,10 +162,28 @@ class triangle_bvh {
     }
     const bvh_t<float> b = build_bvh(boxes, centroids, opt);
     depth_ = b.depth;
-    tris_.reserve(b.order.size());
-    for (const std::uint32_t i : b.order)  // leaf order: a leaf's index points into tris_
-      tris_.push_back({tris[i].a, tris[i].b, tris[i].c, i});
+    triangle_count_ = b.order.size();
     nodes_ = collapse4(b);
+    // Each leaf's triangles to whole blocks of four, in leaf order; its child index becomes the
+    // position of its first triangle there (4 times its first block).
+    triangle4 empty;
+    for (auto& row : empty.v)
+      for (float& x : row) x = std::numeric_limits<float>::quiet_NaN();
+    for (std::uint32_t& id : empty.id) id = UINT32_MAX;
+    for (bvh_node4& n : nodes_)
+      for (int k = 0; k < 4; ++k) {
+        if (n.count[k] == 0) continue;
+        const std::uint32_t first = n.child[k];
+        n.child[k] = std::uint32_t(4 * blocks_.size());
+        for (std::uint32_t j = 0; j < n.count[k]; ++j) {
+          if (j % 4 == 0) blocks_.push_back(empty);
+          const std::uint32_t i = b.order[first + j];
+          const float* v[3] = {glm::value_ptr(tris[i].a), glm::value_ptr(tris[i].b),
+                               glm::value_ptr(tris[i].c)};
+          for (int row = 0; row < 9; ++row) blocks_.back().v[row][j % 4] = v[row / 3][row % 3];
+          blocks_.back().id[j % 4] = i;
+        }
+      }
   }
 
   // [listing packed-watertight]
@@ -159,26 +196,85 @@ class triangle_bvh {
                    triangle_bvh_hit& h) {
     float t, u, v;
     if (!detail::watertight_test(r.shear, tri.a, tri.b, tri.c, t, u, v)) return false;
-    if (!(t > t_min && (t < t_max || (t == h.t && tri.id < h.triangle)))) return false;
+    return accept(tri, r, t_min, t_max, t, u, v, h);
+  }
+  static bool accept(const packed_triangle& tri, const bvh_ray& r, float t_min, float t_max,
+                     float t, float u, float v, triangle_bvh_hit& h) {
+    const bool tie = h.triangle != UINT32_MAX && t == h.t && tri.id < h.triangle;
+    if (!(t > t_min && (t < t_max || tie))) return false;
     if (!detail::t_certainly_positive(tri.a, tri.b, tri.c, r.origin, r.direction)) return false;
     h = {t, u, v, tri.id};
     return true;
   }
   // [end]
 
+  // [listing block-test]
+  // The four triangles of block q, as test() would take them one after the other: the four-lane
+  // test (watertight4.hpp) finds the lanes hit, with their t, u and v, and the lanes whose edge
+  // function rounded to 0. Without the four-lane test, test() on each lane.
+  template <class Ray4>
+  static bool test_block(const triangle4& q, const bvh_ray& r, [[maybe_unused]] const Ray4& r4, float t_min,
+                         float t_max, triangle_bvh_hit& h) {
+#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+    if constexpr (detail::watertight4_available) {
+      // A lane can only be accepted with t < t_max or at a tie with the hit so far.
+      const float bound = h.triangle != UINT32_MAX ? std::max(t_max, h.t) : t_max;
+      lanes4 l;
+      l.hit = detail::watertight_test4(r4, q, t_min, bound, l.t, l.u, l.v, l.scalar);
+      return (l.hit | l.scalar) != 0 && accept_lanes(q, l, r, t_min, t_max, h);
+    }
+#endif
+    bool found = false;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const packed_triangle tri = lane(q, k);
+      if (tri.id != UINT32_MAX && test(tri, r, t_min, t_max, h)) {
+        found = true;
+        t_max = h.t;
+      }
+    }
+    return found;
+  }
+  // What the four-lane test found in a block: the lanes hit and their t, u, v; the lanes left to
+  // test().
+  struct lanes4 {
+    float t[4], u[4], v[4];
+    unsigned hit, scalar;
+  };
+  // Each lane found, in lane order, accepted or not by test()'s own rules (the interval with the
+  // tie, the certainty of t > 0, which look at the hit found so far), or tested by test() itself.
+  // A call, not inlined: most blocks have no lane to accept, and the walk's loop keeps its
+  // registers (5 % faster).
+#if defined(__GNUC__)
+  [[gnu::noinline]]
+#endif
+  static bool accept_lanes(const triangle4& q, const lanes4& l, const bvh_ray& r, float t_min, float t_max,
+                           triangle_bvh_hit& h) {
+    bool found = false;
+    for (unsigned lanes = l.hit | l.scalar; lanes; lanes &= lanes - 1) {
+      const int k = std::countr_zero(lanes);
+      const packed_triangle tri = lane(q, std::size_t(k));
+      if ((l.scalar >> k) & 1u ? test(tri, r, t_min, t_max, h) : accept(tri, r, t_min, t_max, l.t[k], l.u[k], l.v[k], h)) {
+        found = true;
+        t_max = h.t;
+      }
+    }
+    return found;
+  }
+  // [end]
+
   // [listing triangle-traverse]
-  // wide_bvh.hpp's walk with this leaf: the packed triangles, each hit lowering t_max.
+  // wide_bvh.hpp's walk with this leaf: its blocks of four triangles, each hit lowering t_max.
   template <bool count>
   bool nearest(const bvh_ray& r, float t_min, float t_max, triangle_bvh_hit& h,
                bvh_stats* stats) const {
     if (!r.valid) return false;
+    const auto r4 = ray4(r);
     return wide_nearest(
         nodes_, r.box, t_min, t_max,
         [&](std::uint32_t first, std::uint32_t n, float& t_cull) {
           bool found = false;
-          const packed_triangle* tri = &tris_[first];
-          for (std::uint32_t k = 0; k < n; ++k)
-            if (test(tri[k], r, t_min, t_cull, h)) {
+          for (std::uint32_t k = 0; k < n; k += 4)
+            if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_cull, h)) {
               found = true;
               t_cull = h.t;
             }
@@ -191,20 +287,31 @@ class triangle_bvh {
   template <bool count>
   bool any(const bvh_ray& r, float t_min, float t_max, bvh_stats* stats) const {
     if (!r.valid) return false;
+    const auto r4 = ray4(r);
     return wide_any(
         nodes_, r.box, t_min, t_max,
         [&](std::uint32_t first, std::uint32_t n) {
-          for (std::uint32_t k = 0; k < n; ++k) {
+          for (std::uint32_t k = 0; k < n; k += 4) {
             triangle_bvh_hit ignored;
-            if (test(tris_[first + k], r, t_min, t_max, ignored)) return true;
+            if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_max, ignored)) return true;
           }
           return false;
         },
         count ? stats : nullptr);
   }
 
+  // The four-lane test's ray, or nothing where there is none.
+  static auto ray4(const bvh_ray& r) {
+#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+    return detail::watertight_ray4(r.shear);
+#else
+    return r.valid;
+#endif
+  }
+
   std::vector<triangle_bvh_node4> nodes_;
-  std::vector<packed_triangle> tris_;
+  std::vector<triangle4> blocks_;
+  std::size_t triangle_count_ = 0;
   std::size_t input_count_ = 0;
   int depth_ = 0;
 };
