@@ -301,13 +301,12 @@ class triangle_bvh {
   }
 
   // The four-lane test's ray, or nothing where there is none.
-  static auto ray4(const bvh_ray& r) {
+  // (An explicit return type: clang refuses a deduced one used above its definition.)
 #if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
-    return detail::watertight_ray4(r.shear);
+  static detail::watertight_ray4 ray4(const bvh_ray& r) { return detail::watertight_ray4(r.shear); }
 #else
-    return r.valid;
+  static bool ray4(const bvh_ray& r) { return r.valid; }
 #endif
-  }
 
   std::vector<triangle_bvh_node4> nodes_;
   std::vector<triangle4> blocks_;
