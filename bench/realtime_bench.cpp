@@ -3,10 +3,12 @@
 //  * the kernel's throughput vs the CPU path tracer (path.hpp through render.hpp) on 1 and 2
 //    threads, in million paths (samples) per second.
 // Paths per second counts camera samples; each is a whole path with its light samples.
-// Targets from the course plan: kernel >= CPU on 2 threads. On PoCL, OpenCL runs on the same
-// two cores as the CPU path tracer, so this compares code, not hardware.
+// Targets (issue 17): the specialised kernel >= 1.2x the all-features one, and >= 1.5x the CPU
+// on 2 threads. On PoCL, OpenCL runs on the same two cores as the CPU path tracer, so this
+// compares code, not hardware.
 #include <zraka/error.hpp>
 #include <zraka/gpu_scene.hpp>
+#include <zraka/path.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/realtime.hpp>
 #include <zraka/render.hpp>
@@ -118,10 +120,10 @@ int main(int argc, char** argv) {
     row("CPU path tracer, 2 threads", c2);
     std::printf("specialised / all-features: %.2fx wall, %.2fx per CPU-second\n",
                 k_special.wall / k_all.wall, k_special.cpu / k_all.cpu);
-    std::printf("kernel / CPU 2 threads: %.2fx wall (target >= 1: %s), %.2fx per CPU-second\n",
-                k_special.wall / c2.wall, k_special.wall >= c2.wall ? "met" : "NOT met",
-                k_special.cpu / c2.cpu);
-    std::printf("summary: %d round(s) in %.1f s\n", rounds, clock.seconds());
+    std::printf("kernel / CPU 2 threads: %.2fx wall, %.2fx per CPU-second (issue 17's target >= 1.5x per CPU-second: %s)\n",
+                k_special.wall / c2.wall, k_special.cpu / c2.cpu, k_special.cpu >= 1.5 * c2.cpu ? "met" : "NOT met");
+    std::printf("summary: %d round(s) in %.1f s; kernel specialised to %s; CPU scene choices: %s\n", rounds,
+                clock.seconds(), special.options().c_str(), path_tracer(sc, po).choices().c_str());
     return 0;
   });
 }

@@ -145,11 +145,11 @@ int main(int argc, char** argv) {
     }
     const double secs = std::max(tot.seconds, 1e-9);
     std::printf("summary: %s %s %dx%d, %d spp in %.2f s on %d thread%s: %.3f M samples/s, %.3f M rays/s, "
-                "%.2f rays/sample, %llu NaN/inf samples; total %.2f s\n",
+                "%.2f rays/sample, %llu NaN/inf samples; total %.2f s; scene choices: %s\n",
                 scene_name.c_str(), name(io.method), W, H, tot.spp, tot.seconds, tot.stats.threads,
                 tot.stats.threads == 1 ? "" : "s", double(tot.stats.samples) / secs * 1e-6,
                 double(tot.stats.rays) / secs * 1e-6, double(tot.stats.rays) / double(std::max<std::uint64_t>(tot.stats.samples, 1)),
-                static_cast<unsigned long long>(tot.stats.nonfinite), clock.seconds());
+                static_cast<unsigned long long>(tot.stats.nonfinite), clock.seconds(), tracer.choices().c_str());
     return 0;
   });
 }

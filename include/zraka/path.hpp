@@ -229,6 +229,9 @@ template <class T> struct path_tracer_t {
   rgb operator()(const ray_t<T>& r, rng& g, std::uint64_t& rays) const {
     return path_radiance(sc, lights, r, g, opt, rays);
   }
+  // What this scene made the renderer build and which branches of the loop its paths can take
+  // (issue 17, "leave out what a scene does not need"), for the summary line.
+  std::string choices() const;
 };
 
 template <class T>
@@ -240,6 +243,22 @@ path_tracer_t<T>::path_tracer_t(const scene_t<T>& scene, const path_options& o)
   if (o.method == integrator::naive && !scene.point_lights.empty())
     throw error("integrator naive: the scene has " + std::to_string(scene.point_lights.size()) +
                 " point light(s), which a ray can never hit; use nee or mis");
+}
+
+template <class T> std::string path_tracer_t<T>::choices() const {
+  std::string out = sc.has_object_bvh() ? "object BVH over " + std::to_string(sc.accel.objects.size()) + " objects"
+                                        : "no object BVH (" + std::to_string(sc.bounded_count()) + " objects in a list)";
+  if (!sc.meshes.empty()) out += ", " + std::to_string(sc.meshes.size()) + " triangle BVH(s)";
+  out += opt.method == integrator::naive ? ", no light sampling" : ", " + std::to_string(lights.size()) + " light(s) sampled";
+  bool used[8] = {};  // by material_kind; [7]: custom BSDFs
+  for (const material& m : sc.materials) used[m.bsdf ? 7 : int(m.kind)] = true;
+  std::string kinds;
+  for (int k = 0; k < 8; ++k)
+    if (used[k]) kinds += (kinds.empty() ? "" : "+") + std::string(k == 7 ? "custom" : kind_name(material_kind(k)));
+  out += ", materials " + (kinds.empty() ? std::string("none") : kinds);
+  out += sc.media.empty() ? ", media branch off" : ", media branch on";
+  out += sc.environment ? ", environment on" : ", environment off";
+  return out + " (one compiled loop; branches chosen per path)";
 }
 
 using path_tracer = path_tracer_t<double>;
