@@ -14,9 +14,11 @@
 // after zraka is done, so the two never share the cores. The time to the target is interpolated
 // log-log between the rows that bracket it (seconds_to_reach, progressive.hpp).
 // The path tracers run in double and in float (scene_precision.hpp), each a row. Each row also
-// gives its rate in million samples (paths) per second, Mitsuba's too.
+// gives its rate in million samples (paths) per second, Mitsuba's too. `kernel` is book 4.3's
+// OpenCL path tracer (mis, float, specialised to the scene) on the first OpenCL device, in
+// launches that double the samples; on PoCL it runs on the same cores (--threads does not bind it).
 //   build/bin/time_to_error [--scene S] [--target RMSE] [--max-seconds S] [--ref-spp N]
-//                           [--integrators mis,nee,bdpt] [--precisions double,float]
+//                           [--integrators mis,nee,bdpt,kernel] [--precisions double,float]
 //                           [--mitsuba PYTHON|none] [--threads T]
 #include <zraka/bdpt.hpp>
 #include <zraka/cli.hpp>
@@ -29,6 +31,10 @@
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/program_options.hpp>
 #include <zraka/progressive.hpp>
+#if defined(ZRAKA_TTE_OPENCL)
+#include <zraka/gpu_scene.hpp>
+#include <zraka/realtime.hpp>
+#endif
 #include <zraka/reference.hpp>
 #include <zraka/resources.hpp>
 #include <zraka/samplers.hpp>
@@ -168,7 +174,8 @@ int main(int argc, char** argv) {
   cli.app.add_option("--target", target, "the RMSE to reach, in RTIOW's output space (gamma 2, clamped to [0, 1])");
   cli.app.add_option("--max-seconds", max_seconds, "a method stops after a pass that ends later than this");
   cli.app.add_option("--ref-spp", ref_spp, "samples per pixel of the mis reference (made once, cached in build/out/)");
-  cli.app.add_option("--integrators", integrators, "comma-separated: naive, nee, mis (path tracing) and bdpt");
+  cli.app.add_option("--integrators", integrators,
+                     "comma-separated: naive, nee, mis (path tracing), bdpt, and kernel (book 4.3's OpenCL path tracer, mis)");
   cli.app.add_option("--samplers", samplers, std::string("comma-separated samplers for the path tracers: ") + sampler_names +
                          " (stratified is stratified over 65536 spp, the most a run may reach: a run stopped "
                          "earlier has a random subset of the cells)");
@@ -225,6 +232,33 @@ int main(int argc, char** argv) {
         print_row(r, target, double(W) * H);
         results.push_back(std::move(r));
         continue;
+      }
+      if (m == "kernel") {
+#if defined(ZRAKA_TTE_OPENCL)
+        path_options kp = po;
+        kp.method = integrator::mis;
+        const gpu_scene packed = pack_scene(sc, W, H, kp);  // refuses, by name, what the kernel lacks
+        cl::context ctx(cl::pick_device(0));
+        gpu_renderer gpu(ctx, packed, W, H, cli.seed);
+        gpu.launch(1);  // PoCL compiles the work-group function at the first launch: not timed
+        gpu.finish();
+        gpu.reset();
+        result_t r{"kernel mis float", convergence_log("kernel on " + stem, {"rmse"}, "rmse", "spp")};
+        double seconds = 0;
+        for (std::uint32_t n = 1; n <= 65536; n *= 2) {  // 1, 1, 2, 4, ...: the sums double
+          const stopwatch clock;
+          gpu.launch(gpu.samples() == 0 ? 1 : gpu.samples());
+          gpu.finish();
+          seconds += clock.seconds();
+          r.log.add(gpu.samples(), seconds, {err(gpu.read_image())});
+          if (r.log.rows().back().values[0] <= target || seconds > max_seconds) break;
+        }
+        print_row(r, target, double(W) * H);
+        results.push_back(std::move(r));
+        continue;
+#else
+        throw error("--integrators kernel: this build has no OpenCL (bench/CMakeLists.txt)");
+#endif
       }
       path_options p = po;
       p.method = parse_integrator(m);
