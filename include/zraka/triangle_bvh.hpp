@@ -115,35 +115,16 @@ class triangle_bvh {
     return input_count_ ? double(bytes()) / double(input_count_) : 0.0;
   }
 
+  // The queries are compiled once with the walk they instantiate (compiled.hpp), below the class.
   // The nearest hit with t in (t_min, t_max).
-  bool intersect(const ray_t<float>& r, float t_min, float t_max, triangle_bvh_hit& h,
-                 bvh_stats* stats = nullptr) const {
-    h = {};
-    return stats ? nearest<true>(bvh_ray(r), t_min, t_max, h, stats)
-                 : nearest<false>(bvh_ray(r), t_min, t_max, h, nullptr);
-  }
+  ZRAKA_COMPILED_FN bool intersect(const ray_t<float>& r, float t_min, float t_max, triangle_bvh_hit& h,
+                                   bvh_stats* stats = nullptr) const;
   // Any hit with t in (t_min, t_max): for shadow rays; stops at the first.
-  bool occluded(const ray_t<float>& r, float t_min, float t_max, bvh_stats* stats = nullptr) const {
-    return stats ? any<true>(bvh_ray(r), t_min, t_max, stats)
-                 : any<false>(bvh_ray(r), t_min, t_max, nullptr);
-  }
+  ZRAKA_COMPILED_FN bool occluded(const ray_t<float>& r, float t_min, float t_max, bvh_stats* stats = nullptr) const;
   // Every triangle, one at a time with the scalar test and the same tie rule: the reference the
   // BVH and its four-lane leaf must equal.
-  bool intersect_brute_force(const ray_t<float>& r, float t_min, float t_max,
-                             triangle_bvh_hit& h) const {
-    h = {};
-    const bvh_ray br(r);
-    if (!br.valid) return false;
-    bool found = false;
-    for (std::size_t k = 0; k < positions(); ++k) {
-      const packed_triangle tri = triangle(k);
-      if (tri.id != UINT32_MAX && test(tri, br, t_min, t_max, h)) {
-        found = true;
-        t_max = h.t;
-      }
-    }
-    return found;
-  }
+  ZRAKA_COMPILED_FN bool intersect_brute_force(const ray_t<float>& r, float t_min, float t_max,
+                                               triangle_bvh_hit& h) const;
 
  private:
   // The tree over the triangles, then their blocks; compiled once (compiled.hpp).
@@ -279,6 +260,33 @@ class triangle_bvh {
 };
 
 #if ZRAKA_COMPILED_DEFINITIONS
+ZRAKA_COMPILED_FN bool triangle_bvh::intersect(const ray_t<float>& r, float t_min, float t_max, triangle_bvh_hit& h,
+                                               bvh_stats* stats) const {
+  h = {};
+  return stats ? nearest<true>(bvh_ray(r), t_min, t_max, h, stats)
+               : nearest<false>(bvh_ray(r), t_min, t_max, h, nullptr);
+}
+
+ZRAKA_COMPILED_FN bool triangle_bvh::occluded(const ray_t<float>& r, float t_min, float t_max, bvh_stats* stats) const {
+  return stats ? any<true>(bvh_ray(r), t_min, t_max, stats) : any<false>(bvh_ray(r), t_min, t_max, nullptr);
+}
+
+ZRAKA_COMPILED_FN bool triangle_bvh::intersect_brute_force(const ray_t<float>& r, float t_min, float t_max,
+                                                           triangle_bvh_hit& h) const {
+  h = {};
+  const bvh_ray br(r);
+  if (!br.valid) return false;
+  bool found = false;
+  for (std::size_t k = 0; k < positions(); ++k) {
+    const packed_triangle tri = triangle(k);
+    if (tri.id != UINT32_MAX && test(tri, br, t_min, t_max, h)) {
+      found = true;
+      t_max = h.t;
+    }
+  }
+  return found;
+}
+
 ZRAKA_COMPILED_FN void triangle_bvh::build(const std::vector<triangle_t<float>>& tris, const bvh_build_options& opt) {
   input_count_ = tris.size();
   std::vector<aabb_t<float>> boxes(tris.size());
