@@ -24,3 +24,4 @@
 #include <zraka/scene_query.hpp>
 #include <zraka/sppm.hpp>
 #include <zraka/tessellate.hpp>
+#include <zraka/texture.hpp>
