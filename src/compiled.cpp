@@ -21,6 +21,7 @@
 #include <zraka/progressive.hpp>
 #include <zraka/render.hpp>
 #include <zraka/scene_registry.hpp>
+#include <zraka/triangle_bvh.hpp>
 #if defined(ZRAKA_COMPILED_MESH_FILE)  // built with assimp
 #include <zraka/mesh_file.hpp>
 #endif

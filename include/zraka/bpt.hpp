@@ -6,6 +6,7 @@
 // Blank lines are skipped. Every error names the file and the line: a silently misread patch
 // table shows up much later as a torn teapot.
 #include <zraka/bezier_patch.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/input_file.hpp>
 #include <zraka/limits.hpp>
@@ -138,5 +139,10 @@ template <class T = double> patch_set_t<T> load_bpt(const std::filesystem::path&
   std::istringstream in(read_input_file(path));  // a regular file within limits().file_bytes
   return parse_bpt<T>(in, path.string());
 }
+
+ZRAKA_INSTANCE(patch_set_t<double> parse_bpt<double>(std::istream&, const std::string&))  // compiled.hpp
+ZRAKA_INSTANCE(patch_set_t<double> load_bpt<double>(const std::filesystem::path&))
+ZRAKA_INSTANCE(patch_set_t<float> parse_bpt<float>(std::istream&, const std::string&))  // the GPU's (3.2)
+ZRAKA_INSTANCE(patch_set_t<float> load_bpt<float>(const std::filesystem::path&))
 
 }  // namespace zraka

@@ -318,18 +318,24 @@ inline kernel_handle make_kernel(const program_handle& p, const std::string& nam
   return k;
 }
 
+// clSetKernelArg, checked; compiled once, not in each set_arg below (compiled.hpp).
+ZRAKA_OPENCL_FN void set_arg_bytes(const kernel_handle& k, cl_uint index, std::size_t size, const void* value);
+#if ZRAKA_OPENCL_DEFINITIONS
+ZRAKA_OPENCL_FN void set_arg_bytes(const kernel_handle& k, cl_uint index, std::size_t size, const void* value) {
+  check(clSetKernelArg(k.get(), index, size, value), "clSetKernelArg " + std::to_string(index));
+}
+#endif
+
 // [listing cl-args]
 // Kernel arguments by type: a buffer is passed as its cl_mem handle, so its size is
 // sizeof(cl_mem), never the size of the data it holds (errata B13).
 inline void set_arg(const kernel_handle& k, cl_uint index, const buffer& b) {
   const cl_mem m = b.get();
-  check(clSetKernelArg(k.get(), index, sizeof(cl_mem), &m),
-        "clSetKernelArg " + std::to_string(index));
+  set_arg_bytes(k, index, sizeof(cl_mem), &m);
 }
 template <class V> void set_arg(const kernel_handle& k, cl_uint index, const V& value) {
   static_assert(std::is_trivially_copyable_v<V>);
-  check(clSetKernelArg(k.get(), index, sizeof(V), &value),
-        "clSetKernelArg " + std::to_string(index));
+  set_arg_bytes(k, index, sizeof(V), &value);
 }
 template <class... A> void set_args(const kernel_handle& k, const A&... args) {
   cl_uint i = 0;

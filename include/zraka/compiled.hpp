@@ -5,8 +5,8 @@
 // checks (program_options.hpp), writing images with stb_image_write's PNG encoder (image_io.hpp),
 // atomic file writing (atomic_file.hpp), image::check_size (image.hpp), reading input files and
 // the limits' checks (input_file.hpp, limits.hpp, render.hpp), the built-in scenes
-// (default_scene.hpp, named_scenes.hpp), the convergence table (convergence.hpp) and the Mitsuba
-// export (mitsuba_export.hpp). Scene files (scene_file.hpp) and PLY/glTF meshes (mesh_file.hpp)
+// (default_scene.hpp, named_scenes.hpp), the convergence table (convergence.hpp), the Mitsuba
+// export (mitsuba_export.hpp) and the triangle BVH's builder (triangle_bvh.hpp). Scene files (scene_file.hpp) and PLY/glTF meshes (mesh_file.hpp)
 // follow the same pattern under their own macros, ZRAKA_COMPILED_SCENE_FILE and
 // ZRAKA_COMPILED_MESH_FILE, defined when zraka was built with yaml-cpp and assimp, and so does the
 // preview window of --window and gl.hpp's shaders (ZRAKA_COMPILED_GL, with GLFW and libepoxy),
@@ -32,7 +32,9 @@
 #define ZRAKA_COMPILED_DEFINITIONS 0
 #endif
 
-// Templates at double, the precision of every chapter, are compiled once in the library too.
+// Templates at double, the precision of every chapter, are compiled once in the library too (and
+// at float where a chapter uses it: the BVH builder, the .bpt reader and tessellation); among
+// them the scene, lights, path tracer, BDPT, MLT, media, photon mapping and SPPM.
 // ZRAKA_INSTANCE(declaration), written after a template's definition, is
 //   - for the library's users an explicit instantiation declaration (extern template): a unit
 //     calls the library's copy instead of compiling its own;

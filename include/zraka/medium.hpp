@@ -29,6 +29,7 @@
 // the probability of passing the mean of T_r,c(t_max). We choose uniformly rather than by the
 // path throughput so that the weights depend on the medium alone.
 #include <zraka/aabb.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/image.hpp>
 #include <zraka/ray.hpp>
@@ -286,5 +287,9 @@ rgb segment_transmittance(const medium& m, const ray_t<T>& r, T t_max, rng& g, c
   return beer_lambert(m.sigma_t(), D);
 }
 // [end]
+
+// Compiled once at double (compiled.hpp).
+ZRAKA_INSTANCE(flight_t<double> sample_flight(const medium&, const ray_t<double>&, double, rng&, const medium_options&))
+ZRAKA_INSTANCE(rgb segment_transmittance(const medium&, const ray_t<double>&, double, rng&, const medium_options&))
 
 }  // namespace zraka

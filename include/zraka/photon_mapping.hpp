@@ -11,6 +11,7 @@
 //                specular bounces to a surface y with a density, and the global map's estimate
 //                of everything y reflects (L (S|D)* D y, then D x).
 // Emission found by the gathering ray is skipped (direct light and caustics counted it).
+#include <zraka/compiled.hpp>
 #include <zraka/lights.hpp>
 #include <zraka/material.hpp>
 #include <zraka/photon_map.hpp>
@@ -75,55 +76,15 @@ struct photon_map_options {
 
 template <class T> class photon_mapper_t {
  public:
-  photon_mapper_t(const scene_t<T>& sc, const photon_map_options& o) : sc_(sc), lights_(sc), opt_(o) {
-    if (!(o.radius > 0) || !std::isfinite(o.radius))
-      throw error("photon mapping: --radius must be positive, got " + std::to_string(o.radius));
-    check_photon_scene(sc, lights_);
-    // [listing two-maps]
-    auto pass = trace_photons(sc, lights_, o.photons, o.seed, 0, o.trace, o.threads,
-                              [](const photon_t<T>&) { return true; });
-    emitted_ = pass.emitted;
-    std::vector<photon_t<T>> caustic;
-    for (const auto& p : pass.photons)
-      if (p.caustic) caustic.push_back(p);
-    caustic_.build(std::move(caustic), T(o.radius));
-    global_.build(std::move(pass.photons), T(o.radius));  // every stored photon: all y reflects
-    // [end]
-  }
+  // Traces the photons and builds both maps. Throws zraka::error.
+  photon_mapper_t(const scene_t<T>& sc, const photon_map_options& o);
 
   const light_set_t<T>& lights() const { return lights_; }
   std::size_t global_size() const { return global_.size(); }
   std::size_t caustic_size() const { return caustic_.size(); }
 
-  // [listing photon-radiance]
-  rgb operator()(const ray_t<T>& r, rng& g, std::uint64_t& rays) const {
-    const T rad = T(opt_.radius);
-    const visible_point_t<T> vp = find_visible_point(sc_, lights_, r, g, opt_.max_depth, rays);
-    if (!vp.found) return vp.direct;
-    const material& m = sc_.materials[std::size_t(vp.sh.material)];
-    rgb L = vp.direct + vp.beta * photon_density(caustic_, emitted_, m, vp.sh.h, vp.wo, rad);
-    // Final gathering: one bounce of the path loop's BSDF sampling, then the global map at y.
-    const auto s = scatter(m, -vp.wo, vp.sh.h, g);
-    if (!s) return L;
-    rgb beta = vp.beta * s->weight;
-    ray_t<T> gather = spawn_ray(vp.sh.h, s->direction);
-    for (int bounce = 0; bounce < opt_.max_depth; ++bounce) {
-      scene_hit_t<T> y;
-      ++rays;
-      if (!nearest_hit(sc_, gather, y)) break;
-      const material& my = sc_.materials[std::size_t(y.material)];
-      if (has_density(my)) {
-        L += beta * photon_density(global_, emitted_, my, y.h, -gather.direction, rad);
-        break;
-      }
-      const auto sy = scatter(my, gather.direction, y.h, g);  // through glass and mirrors
-      if (!sy) break;
-      beta *= sy->weight;
-      gather = spawn_ray(y.h, sy->direction);
-    }
-    return L;
-  }
-  // [end]
+  // The radiance along camera ray r (find_visible_point, the caustic map, final gathering).
+  rgb operator()(const ray_t<T>& r, rng& g, std::uint64_t& rays) const;
 
  private:
   const scene_t<T>& sc_;
@@ -132,5 +93,57 @@ template <class T> class photon_mapper_t {
   photon_grid_t<T> global_, caustic_;
   std::uint64_t emitted_ = 0;
 };
+
+// The members below the class: compiled once at double with zraka::compiled (compiled.hpp).
+template <class T>
+photon_mapper_t<T>::photon_mapper_t(const scene_t<T>& sc, const photon_map_options& o)
+    : sc_(sc), lights_(sc), opt_(o) {
+  if (!(o.radius > 0) || !std::isfinite(o.radius))
+    throw error("photon mapping: --radius must be positive, got " + std::to_string(o.radius));
+  check_photon_scene(sc, lights_);
+  // [listing two-maps]
+  auto pass = trace_photons(sc, lights_, o.photons, o.seed, 0, o.trace, o.threads,
+                            [](const photon_t<T>&) { return true; });
+  emitted_ = pass.emitted;
+  std::vector<photon_t<T>> caustic;
+  for (const auto& p : pass.photons)
+    if (p.caustic) caustic.push_back(p);
+  caustic_.build(std::move(caustic), T(o.radius));
+  global_.build(std::move(pass.photons), T(o.radius));  // every stored photon: all y reflects
+  // [end]
+}
+
+// [listing photon-radiance]
+template <class T>
+rgb photon_mapper_t<T>::operator()(const ray_t<T>& r, rng& g, std::uint64_t& rays) const {
+  const T rad = T(opt_.radius);
+  const visible_point_t<T> vp = find_visible_point(sc_, lights_, r, g, opt_.max_depth, rays);
+  if (!vp.found) return vp.direct;
+  const material& m = sc_.materials[std::size_t(vp.sh.material)];
+  rgb L = vp.direct + vp.beta * photon_density(caustic_, emitted_, m, vp.sh.h, vp.wo, rad);
+  // Final gathering: one bounce of the path loop's BSDF sampling, then the global map at y.
+  const auto s = scatter(m, -vp.wo, vp.sh.h, g);
+  if (!s) return L;
+  rgb beta = vp.beta * s->weight;
+  ray_t<T> gather = spawn_ray(vp.sh.h, s->direction);
+  for (int bounce = 0; bounce < opt_.max_depth; ++bounce) {
+    scene_hit_t<T> y;
+    ++rays;
+    if (!nearest_hit(sc_, gather, y)) break;
+    const material& my = sc_.materials[std::size_t(y.material)];
+    if (has_density(my)) {
+      L += beta * photon_density(global_, emitted_, my, y.h, -gather.direction, rad);
+      break;
+    }
+    const auto sy = scatter(my, gather.direction, y.h, g);  // through glass and mirrors
+    if (!sy) break;
+    beta *= sy->weight;
+    gather = spawn_ray(y.h, sy->direction);
+  }
+  return L;
+}
+// [end]
+
+ZRAKA_INSTANCE(class photon_mapper_t<double>)  // compiled.hpp
 
 }  // namespace zraka

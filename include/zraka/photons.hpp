@@ -13,6 +13,7 @@
 // Photons of a pass are traced in fixed chunks; photon i of pass k has its own stream
 // rng(seed, i, photon_stream + k), and the chunks are merged in chunk order, so the photons (and
 // everything made from them) are the same for any number of threads.
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/lights.hpp>
 #include <zraka/material.hpp>
@@ -68,6 +69,7 @@ template <class T> void check_photon_scene(const scene_t<T>& sc, const light_set
   }
   if (lights.empty()) throw error("photon mapping: the scene has no lights");
 }
+ZRAKA_INSTANCE(void check_photon_scene(const scene_t<double>&, const light_set_t<double>&))  // compiled.hpp
 
 // [listing trace-photon]
 // One photon from stream g; store(const photon_t&) sees every landing on a surface with a

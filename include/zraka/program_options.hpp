@@ -98,12 +98,8 @@ struct program_options {
   ZRAKA_COMPILED_FN program_options(std::string description, take options);
 
   // Adds the shared options, parses, checks. Returns the exit code when main should stop now.
-  std::optional<int> parse(int argc, char** argv) {
-    if (const auto done = parse_shared(argc, argv)) return done;
-    if (has(taken_, take::out)) out = output_file(out).string();  // here: it needs the resource root
-    if (!window_screenshot.empty()) window_screenshot = output_file(window_screenshot).string();
-    return std::nullopt;
-  }
+  // Inline for the resource root (the program's, not the library's; compiled.hpp).
+  std::optional<int> parse(int argc, char** argv) { return parse_shared(argc, argv, resource_root()); }
 
   // The render options that --threads asks for.
   render_options render() const {
@@ -142,7 +138,8 @@ struct program_options {
   take taken_;
 
   // The parts without templates, compiled once into zraka::compiled (compiled.hpp).
-  ZRAKA_COMPILED_FN std::optional<int> parse_shared(int argc, char** argv);
+  // parse(), then --out and --window-screenshot put where output_file puts them under this root.
+  ZRAKA_COMPILED_FN std::optional<int> parse_shared(int argc, char** argv, const std::filesystem::path& resource_root);
   ZRAKA_COMPILED_FN void check() const;
   ZRAKA_COMPILED_FN void add_shared();
 };
@@ -199,7 +196,8 @@ ZRAKA_COMPILED_FN program_options::program_options(std::string description, take
   app.always_capture_default();  // --help shows every default, the chapter's own too
 }
 
-ZRAKA_COMPILED_FN std::optional<int> program_options::parse_shared(int argc, char** argv) {
+ZRAKA_COMPILED_FN std::optional<int> program_options::parse_shared(int argc, char** argv,
+                                                                  const std::filesystem::path& resource_root) {
   add_shared();
   if (const auto done = parse_command_line(app, argc, argv)) return done;
   try {
@@ -225,6 +223,13 @@ ZRAKA_COMPILED_FN std::optional<int> program_options::parse_shared(int argc, cha
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
   }
+  // output_file(), with the program's root
+  const auto place = [&](const std::string& name) {
+    const std::filesystem::path p(name);
+    return p.has_parent_path() ? p : detail::output_file_in(p, detail::output_folder_in(resource_root));
+  };
+  if (has(taken_, take::out)) out = place(out).string();
+  if (!window_screenshot.empty()) window_screenshot = place(window_screenshot).string();
   return std::nullopt;
 }
 

@@ -119,10 +119,16 @@ template <class T> struct scene_t {
     return "material " + std::to_string(i);
   }
 
-  int add_material(const material& m) {
-    materials.push_back(m);
-    return static_cast<int>(materials.size()) - 1;
-  }
+  // The special members and add_material are defined below the class, so that with
+  // zraka::compiled they are compiled once (compiled.hpp), not in every program that has a scene.
+  scene_t() = default;
+  scene_t(const scene_t&);
+  scene_t(scene_t&&) noexcept;
+  scene_t& operator=(const scene_t&);
+  scene_t& operator=(scene_t&&) noexcept;
+  ~scene_t();
+
+  int add_material(const material& m);
   object_ref add(const sphere_t<T>& s, int mat) { return push(spheres, s, mat, shape_kind::sphere); }
   object_ref add(const parallelogram_t<T>& q, int mat) { return push(quads, q, mat, shape_kind::quad); }
   // An infinite plane may glow, but it cannot be sampled as a light (it has no finite area to
@@ -175,6 +181,17 @@ template <class T> struct scene_t {
     return {k, static_cast<int>(v.size()) - 1};
   }
 };
+
+template <class T> scene_t<T>::scene_t(const scene_t&) = default;
+template <class T> scene_t<T>::scene_t(scene_t&&) noexcept = default;
+template <class T> scene_t<T>& scene_t<T>::operator=(const scene_t&) = default;
+template <class T> scene_t<T>& scene_t<T>::operator=(scene_t&&) noexcept = default;
+template <class T> scene_t<T>::~scene_t() = default;
+
+template <class T> int scene_t<T>::add_material(const material& m) {
+  materials.push_back(m);
+  return static_cast<int>(materials.size()) - 1;
+}
 
 template <class T> object_ref scene_t<T>::add(mesh_t<T> m, int mat) {
   check_material(mat);

@@ -10,6 +10,7 @@
 // [k * 2 divs^2, (k+1) * 2 divs^2) (chapter 1.4 bounds each patch with a box that way).
 #include <zraka/affine.hpp>
 #include <zraka/bezier_patch.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
 #include <zraka/limits.hpp>
 #include <zraka/mesh.hpp>
@@ -71,5 +72,10 @@ template <class T> mesh_t<T> tessellate(const std::vector<bezier_patch_t<T>>& pa
   for (const auto& p : patches) tessellate_patch(p, divs, to_world, m);
   return m;
 }
+
+ZRAKA_INSTANCE(void tessellate_patch(const bezier_patch_t<double>&, int, const affine_t<double>&, mesh_t<double>&))
+ZRAKA_INSTANCE(mesh_t<double> tessellate(const std::vector<bezier_patch_t<double>>&, int, const affine_t<double>&))
+ZRAKA_INSTANCE(void tessellate_patch(const bezier_patch_t<float>&, int, const affine_t<float>&, mesh_t<float>&))
+ZRAKA_INSTANCE(mesh_t<float> tessellate(const std::vector<bezier_patch_t<float>>&, int, const affine_t<float>&))  // the GPU's (3.2)
 
 }  // namespace zraka

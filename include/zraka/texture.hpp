@@ -2,6 +2,7 @@
 // Textures: an albedo that varies over a surface. A solid colour; a checkerboard in world space
 // (book 1.8's floor) or in the hit's surface coordinates uv (Mitsuba's checkerboard); an image,
 // looked up by uv; or procedural noise and marble (noise.hpp), functions of the point in space.
+#include <zraka/compiled.hpp>
 #include <zraka/image.hpp>
 #include <zraka/noise.hpp>
 #include <zraka/vec.hpp>
@@ -134,5 +135,7 @@ rgb evaluate(const texture& tex, const vec3_t<T>& p, const vec3_t<T>& n, const v
   return (sum & 1) ? tex.b : tex.a;
 }
 // [end]
+
+ZRAKA_INSTANCE(rgb evaluate(const texture&, const vec3_t<double>&, const vec3_t<double>&, const vec2_t<double>&))  // compiled.hpp
 
 }  // namespace zraka

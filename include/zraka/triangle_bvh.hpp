@@ -16,6 +16,7 @@
 // same float triangle; among hits at exactly the same t the lowest index wins, so the result
 // never depends on the tree.
 #include <zraka/bvh.hpp>
+#include <zraka/compiled.hpp>
 #include <zraka/mesh.hpp>
 #include <zraka/triangle.hpp>
 #include <zraka/watertight4.hpp>
@@ -114,77 +115,20 @@ class triangle_bvh {
     return input_count_ ? double(bytes()) / double(input_count_) : 0.0;
   }
 
+  // The queries are compiled once with the walk they instantiate (compiled.hpp), below the class.
   // The nearest hit with t in (t_min, t_max).
-  bool intersect(const ray_t<float>& r, float t_min, float t_max, triangle_bvh_hit& h,
-                 bvh_stats* stats = nullptr) const {
-    h = {};
-    return stats ? nearest<true>(bvh_ray(r), t_min, t_max, h, stats)
-                 : nearest<false>(bvh_ray(r), t_min, t_max, h, nullptr);
-  }
+  ZRAKA_COMPILED_FN bool intersect(const ray_t<float>& r, float t_min, float t_max, triangle_bvh_hit& h,
+                                   bvh_stats* stats = nullptr) const;
   // Any hit with t in (t_min, t_max): for shadow rays; stops at the first.
-  bool occluded(const ray_t<float>& r, float t_min, float t_max, bvh_stats* stats = nullptr) const {
-    return stats ? any<true>(bvh_ray(r), t_min, t_max, stats)
-                 : any<false>(bvh_ray(r), t_min, t_max, nullptr);
-  }
+  ZRAKA_COMPILED_FN bool occluded(const ray_t<float>& r, float t_min, float t_max, bvh_stats* stats = nullptr) const;
   // Every triangle, one at a time with the scalar test and the same tie rule: the reference the
   // BVH and its four-lane leaf must equal.
-  bool intersect_brute_force(const ray_t<float>& r, float t_min, float t_max,
-                             triangle_bvh_hit& h) const {
-    h = {};
-    const bvh_ray br(r);
-    if (!br.valid) return false;
-    bool found = false;
-    for (std::size_t k = 0; k < positions(); ++k) {
-      const packed_triangle tri = triangle(k);
-      if (tri.id != UINT32_MAX && test(tri, br, t_min, t_max, h)) {
-        found = true;
-        t_max = h.t;
-      }
-    }
-    return found;
-  }
+  ZRAKA_COMPILED_FN bool intersect_brute_force(const ray_t<float>& r, float t_min, float t_max,
+                                               triangle_bvh_hit& h) const;
 
  private:
-  void build(const std::vector<triangle_t<float>>& tris, const bvh_build_options& opt) {
-    input_count_ = tris.size();
-    std::vector<aabb_t<float>> boxes(tris.size());
-    std::vector<vec3_t<float>> centroids(tris.size());
-    for (std::size_t i = 0; i < tris.size(); ++i) {
-      const triangle_t<float>& t = tris[i];
-      // triangle.hpp never hits a degenerate (N = 0) or non-finite triangle: leave it out
-      // (an empty box tells the builder so).
-      const vec3_t<float> n = glm::cross(t.b - t.a, t.c - t.a);
-      if (!is_finite(n) || n == vec3_t<float>(0.0f)) continue;
-      boxes[i].grow(t.a);
-      boxes[i].grow(t.b);
-      boxes[i].grow(t.c);
-      centroids[i] = boxes[i].center();
-    }
-    const bvh_t<float> b = build_bvh(boxes, centroids, opt);
-    depth_ = b.depth;
-    triangle_count_ = b.order.size();
-    nodes_ = collapse4(b);
-    // Each leaf's triangles to whole blocks of four, in leaf order; its child index becomes the
-    // position of its first triangle there (4 times its first block).
-    triangle4 empty;
-    for (auto& row : empty.v)
-      for (float& x : row) x = std::numeric_limits<float>::quiet_NaN();
-    for (std::uint32_t& id : empty.id) id = UINT32_MAX;
-    for (bvh_node4& n : nodes_)
-      for (int k = 0; k < 4; ++k) {
-        if (n.count[k] == 0) continue;
-        const std::uint32_t first = n.child[k];
-        n.child[k] = std::uint32_t(4 * blocks_.size());
-        for (std::uint32_t j = 0; j < n.count[k]; ++j) {
-          if (j % 4 == 0) blocks_.push_back(empty);
-          const std::uint32_t i = b.order[first + j];
-          const float* v[3] = {glm::value_ptr(tris[i].a), glm::value_ptr(tris[i].b),
-                               glm::value_ptr(tris[i].c)};
-          for (int row = 0; row < 9; ++row) blocks_.back().v[row][j % 4] = v[row / 3][row % 3];
-          blocks_.back().id[j % 4] = i;
-        }
-      }
-  }
+  // The tree over the triangles, then their blocks; compiled once (compiled.hpp).
+  ZRAKA_COMPILED_FN void build(const std::vector<triangle_t<float>>& tris, const bvh_build_options& opt);
 
   // [listing packed-watertight]
   // triangle.hpp's intersect_watertight() on the packed data: the same two calls (the
@@ -314,5 +258,75 @@ class triangle_bvh {
   std::size_t input_count_ = 0;
   int depth_ = 0;
 };
+
+#if ZRAKA_COMPILED_DEFINITIONS
+ZRAKA_COMPILED_FN bool triangle_bvh::intersect(const ray_t<float>& r, float t_min, float t_max, triangle_bvh_hit& h,
+                                               bvh_stats* stats) const {
+  h = {};
+  return stats ? nearest<true>(bvh_ray(r), t_min, t_max, h, stats)
+               : nearest<false>(bvh_ray(r), t_min, t_max, h, nullptr);
+}
+
+ZRAKA_COMPILED_FN bool triangle_bvh::occluded(const ray_t<float>& r, float t_min, float t_max, bvh_stats* stats) const {
+  return stats ? any<true>(bvh_ray(r), t_min, t_max, stats) : any<false>(bvh_ray(r), t_min, t_max, nullptr);
+}
+
+ZRAKA_COMPILED_FN bool triangle_bvh::intersect_brute_force(const ray_t<float>& r, float t_min, float t_max,
+                                                           triangle_bvh_hit& h) const {
+  h = {};
+  const bvh_ray br(r);
+  if (!br.valid) return false;
+  bool found = false;
+  for (std::size_t k = 0; k < positions(); ++k) {
+    const packed_triangle tri = triangle(k);
+    if (tri.id != UINT32_MAX && test(tri, br, t_min, t_max, h)) {
+      found = true;
+      t_max = h.t;
+    }
+  }
+  return found;
+}
+
+ZRAKA_COMPILED_FN void triangle_bvh::build(const std::vector<triangle_t<float>>& tris, const bvh_build_options& opt) {
+  input_count_ = tris.size();
+  std::vector<aabb_t<float>> boxes(tris.size());
+  std::vector<vec3_t<float>> centroids(tris.size());
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    const triangle_t<float>& t = tris[i];
+    // triangle.hpp never hits a degenerate (N = 0) or non-finite triangle: leave it out
+    // (an empty box tells the builder so).
+    const vec3_t<float> n = glm::cross(t.b - t.a, t.c - t.a);
+    if (!is_finite(n) || n == vec3_t<float>(0.0f)) continue;
+    boxes[i].grow(t.a);
+    boxes[i].grow(t.b);
+    boxes[i].grow(t.c);
+    centroids[i] = boxes[i].center();
+  }
+  const bvh_t<float> b = build_bvh(boxes, centroids, opt);
+  depth_ = b.depth;
+  triangle_count_ = b.order.size();
+  nodes_ = collapse4(b);
+  // Each leaf's triangles to whole blocks of four, in leaf order; its child index becomes the
+  // position of its first triangle there (4 times its first block).
+  triangle4 empty;
+  for (auto& row : empty.v)
+    for (float& x : row) x = std::numeric_limits<float>::quiet_NaN();
+  for (std::uint32_t& id : empty.id) id = UINT32_MAX;
+  for (bvh_node4& n : nodes_)
+    for (int k = 0; k < 4; ++k) {
+      if (n.count[k] == 0) continue;
+      const std::uint32_t first = n.child[k];
+      n.child[k] = std::uint32_t(4 * blocks_.size());
+      for (std::uint32_t j = 0; j < n.count[k]; ++j) {
+        if (j % 4 == 0) blocks_.push_back(empty);
+        const std::uint32_t i = b.order[first + j];
+        const float* v[3] = {glm::value_ptr(tris[i].a), glm::value_ptr(tris[i].b),
+                             glm::value_ptr(tris[i].c)};
+        for (int row = 0; row < 9; ++row) blocks_.back().v[row][j % 4] = v[row / 3][row % 3];
+        blocks_.back().id[j % 4] = i;
+      }
+    }
+}
+#endif
 
 }  // namespace zraka
