@@ -49,6 +49,9 @@ ZRAKA_COMPILED_FN std::filesystem::path output_file_in(const std::filesystem::pa
                                                        const std::filesystem::path& folder);
 ZRAKA_COMPILED_FN std::filesystem::path input_file_in(const std::filesystem::path& name,
                                                       const std::filesystem::path& folder);
+// output_file below, with the resource root given.
+ZRAKA_COMPILED_FN std::filesystem::path output_file_under(const std::filesystem::path& name,
+                                                          const std::filesystem::path& resource_root);
 // --window needs an X display: without one, an error that says so, before any work is done.
 ZRAKA_COMPILED_FN void check_window_display();
 }  // namespace detail
@@ -60,8 +63,7 @@ inline std::filesystem::path output_folder() { return detail::output_folder_in(r
 // The file an output name stands for: a bare file name ("x.png") goes to output_folder(), which
 // is made if needed; a name with a folder ("renders/x.png", "/tmp/x.png") is taken as given.
 inline std::filesystem::path output_file(const std::filesystem::path& name) {
-  if (name.has_parent_path()) return name;
-  return detail::output_file_in(name, output_folder());
+  return detail::output_file_under(name, resource_root());
 }
 
 // An input that an earlier run wrote (e.g. --reference ref.pfm): as given when it exists there,
@@ -166,6 +168,12 @@ ZRAKA_COMPILED_FN std::filesystem::path detail::output_folder_in(const std::file
   return root / "build" / "out";
 }
 
+ZRAKA_COMPILED_FN std::filesystem::path detail::output_file_under(const std::filesystem::path& name,
+                                                                  const std::filesystem::path& resource_root) {
+  if (name.has_parent_path()) return name;
+  return output_file_in(name, output_folder_in(resource_root));
+}
+
 ZRAKA_COMPILED_FN std::filesystem::path detail::output_file_in(const std::filesystem::path& name,
                                                                 const std::filesystem::path& dir) {
   if (dir.empty()) return name;
@@ -224,12 +232,9 @@ ZRAKA_COMPILED_FN std::optional<int> program_options::parse_shared(int argc, cha
     return 1;
   }
   // output_file(), with the program's root
-  const auto place = [&](const std::string& name) {
-    const std::filesystem::path p(name);
-    return p.has_parent_path() ? p : detail::output_file_in(p, detail::output_folder_in(resource_root));
-  };
-  if (has(taken_, take::out)) out = place(out).string();
-  if (!window_screenshot.empty()) window_screenshot = place(window_screenshot).string();
+  if (has(taken_, take::out)) out = detail::output_file_under(out, resource_root).string();
+  if (!window_screenshot.empty())
+    window_screenshot = detail::output_file_under(window_screenshot, resource_root).string();
   return std::nullopt;
 }
 
