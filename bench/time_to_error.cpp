@@ -245,9 +245,9 @@ int main(int argc, char** argv) {
         gpu.reset();
         result_t r{"kernel mis float", convergence_log("kernel on " + stem, {"rmse"}, "rmse", "spp")};
         double seconds = 0;
-        for (std::uint32_t n = 1; n <= 65536; n *= 2) {  // 1, 1, 2, 4, ...: the sums double
+        while (gpu.samples() < 65536) {  // launches of 1, 1, 2, 4, ... spp: the sums double
           const stopwatch clock;
-          gpu.launch(gpu.samples() == 0 ? 1 : gpu.samples());
+          gpu.launch(std::max<std::uint32_t>(gpu.samples(), 1));
           gpu.finish();
           seconds += clock.seconds();
           r.log.add(gpu.samples(), seconds, {err(gpu.read_image())});

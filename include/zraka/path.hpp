@@ -37,9 +37,11 @@
 #include <zraka/scene_query.hpp>
 #include <zraka/spawn.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace zraka {
 
@@ -250,12 +252,13 @@ template <class T> std::string path_tracer_t<T>::choices() const {
                                         : "no object BVH (" + std::to_string(sc.bounded_count()) + " objects in a list)";
   if (!sc.meshes.empty()) out += ", " + std::to_string(sc.meshes.size()) + " triangle BVH(s)";
   out += opt.method == integrator::naive ? ", no light sampling" : ", " + std::to_string(lights.size()) + " light(s) sampled";
-  bool used[8] = {};  // by material_kind; [7]: custom BSDFs
-  for (const material& m : sc.materials) used[m.bsdf ? 7 : int(m.kind)] = true;
-  std::string kinds;
-  for (int k = 0; k < 8; ++k)
-    if (used[k]) kinds += (kinds.empty() ? "" : "+") + std::string(k == 7 ? "custom" : kind_name(material_kind(k)));
-  out += ", materials " + (kinds.empty() ? std::string("none") : kinds);
+  std::vector<std::string> kinds;  // in the order the scene first uses them
+  for (const material& m : sc.materials)
+    if (const std::string k = is_custom(m) ? "custom" : kind_name(m.kind); std::find(kinds.begin(), kinds.end(), k) == kinds.end())
+      kinds.push_back(k);
+  std::string joined;
+  for (const std::string& k : kinds) joined += (joined.empty() ? "" : "+") + k;
+  out += ", materials " + (joined.empty() ? std::string("none") : joined);
   out += sc.media.empty() ? ", media branch off" : ", media branch on";
   out += sc.environment ? ", environment on" : ", environment off";
   return out + " (one compiled loop; branches chosen per path)";
