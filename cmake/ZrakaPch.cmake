@@ -1,18 +1,25 @@
-# Precompiled headers (issue 12, "the student's loop"): two precompiled headers, each compiled
+# Precompiled headers (issue 12, "the student's loop"): four precompiled headers, each compiled
 # once and reused by every target of its kind (target_precompile_headers REUSE_FROM):
 #   zraka_pch_programs  cmake/pch/programs.hpp  chapters, benchmarks, assignments' render programs
+#   zraka_pch_scene     cmake/pch/scene.hpp     the same, for those that render scenes
+#                                               (zraka_pch_kind below picks it from the sources)
+#   zraka_pch_gpu       cmake/pch/gpu.hpp       the same, for those that drive OpenCL or OpenGL
 #   zraka_pch_tests     cmake/pch/tests.hpp     unit tests, assignments' tests
 # CLI11 is in neither: it is compiled once into zraka::compiled (include/zraka/cli.hpp), and the
 # programs' PCH is made with that library's -DZRAKA_COMPILED, like its users.
 #
-# What is in them: standard, GLM, yaml-cpp, tinyobjloader and doctest headers; no zraka
-# header. Measured, and decided against zraka's: with the zraka headers of 2.2-whitted added to
-# the PCH, its front end (-fsyntax-only) went from 3.2 to 1.7 CPU-s, out of ~20 CPU-s for the
-# whole compile, which is code generation at -O3 that no PCH saves; the PCH grew from 150 to
-# 210 MB, which every unit loads. In exchange every chapter and test would depend on every
-# header: editing any header, the most common edit after main.cpp, would rebuild the PCH (~7 s,
-# before anything else can start) and then every target, instead of only those that include
-# that header. And the PCH would hide a missing #include in a chapter or test.
+# What is in them: standard, GLM, yaml-cpp, tinyobjloader and doctest headers in all; zraka's
+# scene-level headers in scene.hpp and gpu.hpp, and OpenCL's, libepoxy's and GLFW's in gpu.hpp.
+# Decided against at first, when a chapter's unit was ~20 CPU-s of -O3 code generation that no
+# PCH saves; since the heavy non-template parts are compiled once (zraka::compiled), a scene
+# chapter's unit is ~2.4 s, about half of it parsing zraka's headers, so now they are in:
+# 2.3-pathtrace 2.39 -> 1.77 s, 6.4-metropolis 2.76 -> 2.09 s, 4.3-realtime 2.66 -> see
+# tools/build_times.sh. The price: editing one of those headers rebuilds the PCH (~10 s) and
+# then every target that uses it; that edit already rebuilt zraka::compiled's units (20-47 s,
+# measured touching path.hpp, sphere.hpp, program_options.hpp), which the PCH builds beside.
+# The early chapters keep programs.hpp (a larger PCH costs them more to load than it saves),
+# and a PCH still hides a missing #include in a chapter or test (not in a header: the
+# headers.self_contained test compiles each one alone).
 #
 # GCC uses a PCH only when the flags that define macros (-D, -O, -pthread, -fsanitize, ...) are
 # the same as when it was made; otherwise it silently parses the headers again. CMake passes
@@ -30,7 +37,7 @@
 option(ZRAKA_PCH "Use precompiled headers for the chapters, tests and benchmarks" ON)
 
 if(ZRAKA_PCH)
-  foreach(kind IN ITEMS programs tests)
+  foreach(kind IN ITEMS programs scene gpu tests)
     set(host_src ${CMAKE_BINARY_DIR}/pch/zraka_pch_${kind}.cpp)
     file(CONFIGURE OUTPUT ${host_src} CONTENT "// Hosts the precompiled header cmake/pch/${kind}.hpp.\n")
     add_library(zraka_pch_${kind} OBJECT ${host_src})
@@ -39,9 +46,15 @@ if(ZRAKA_PCH)
     target_link_libraries(zraka_pch_${kind} PRIVATE zraka::compiled)  # its -DZRAKA_COMPILED
     target_precompile_headers(zraka_pch_${kind} PRIVATE ${CMAKE_CURRENT_LIST_DIR}/pch/${kind}.hpp)
   endforeach()
+  # The C APIs' include folders and definitions, as their users get them.
+  foreach(lib IN ITEMS OpenCL::OpenCL glfw PkgConfig::EPOXY)
+    if(TARGET ${lib})
+      target_link_libraries(zraka_pch_gpu PRIVATE ${lib})
+    endif()
+  endforeach()
 endif()
 
-# zraka_use_pch(<programs|tests> <target>...)
+# zraka_use_pch(<programs|scene|gpu|tests> <target>...)
 function(zraka_use_pch kind)
   if(NOT ZRAKA_PCH)
     return()
@@ -52,7 +65,7 @@ function(zraka_use_pch kind)
 endfunction()
 
 # zraka_use_pch_in_directory(<dir>): every executable defined in <dir> gets a PCH by what it
-# links: zraka_test_main (zraka::test_main) -> tests, otherwise programs. For folders whose CMakeLists.txt only
+# links: zraka_test_main (zraka::test_main) -> tests, otherwise programs or scene (zraka_pch_kind). For folders whose CMakeLists.txt only
 # lists programs and tests (book/assignments/), so that it needs no PCH lines of its own.
 function(zraka_use_pch_in_directory dir)
   get_property(targets DIRECTORY ${dir} PROPERTY BUILDSYSTEM_TARGETS)
@@ -65,7 +78,24 @@ function(zraka_use_pch_in_directory dir)
     if("zraka_test_main" IN_LIST libs OR "zraka::test_main" IN_LIST libs)
       zraka_use_pch(tests ${target})
     else()
-      zraka_use_pch(programs ${target})
+      get_target_property(srcs ${target} SOURCES)
+      get_target_property(sdir ${target} SOURCE_DIR)
+      list(TRANSFORM srcs PREPEND ${sdir}/ REGEX "^[^/]")
+      zraka_pch_kind(kind ${srcs})
+      zraka_use_pch(${kind} ${target})
     endif()
   endforeach()
+endfunction()
+
+# zraka_pch_kind(<out_var> <source>...): "scene" when a source includes one of scene.hpp's zraka
+# headers (cmake/pch/scene.hpp), else "programs".
+function(zraka_pch_kind out_var)
+  set(kind programs)
+  foreach(src IN LISTS ARGN)
+    file(STRINGS ${src} lines REGEX "^#include <zraka/(path|render|scene|scene_argument|scene_query|lights|progressive)\\.hpp>")
+    if(lines)
+      set(kind scene)
+    endif()
+  endforeach()
+  set(${out_var} ${kind} PARENT_SCOPE)
 endfunction()

@@ -76,16 +76,15 @@ std::string find_page(const fs::path& book, const chapter& c) {
   if (fs::exists(book / (c.folder + ".md"))) return c.folder + ".md";
   if (c.folder == "0.0-intro" && fs::exists(book / "intro.md")) return "intro.md";
   if (!fs::is_directory(book)) return "";
-  std::vector<std::string> pages;
-  for (const auto& entry : fs::directory_iterator(book))
-    if (entry.path().extension() == ".md") pages.push_back(entry.path().filename().string());
-  std::sort(pages.begin(), pages.end());
-  for (const auto& p : pages) {
-    std::ifstream in(book / p);
+  std::string first;  // of the pages that name the folder, the first by name (not by listing order)
+  for (const auto& entry : fs::directory_iterator(book)) {
+    const std::string p = entry.path().filename().string();
+    if (entry.path().extension() != ".md" || (!first.empty() && p > first)) continue;
+    std::ifstream in(entry.path());
     const std::string text{std::istreambuf_iterator<char>(in), {}};
-    if (text.find("chapters/" + c.folder + "/") != std::string::npos) return p;
+    if (text.find("chapters/" + c.folder + "/") != std::string::npos) first = p;
   }
-  return "";
+  return first;
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 // Writes <out>.png (crops for the book), <out>-reference.png and <out>-<pattern>.csv.
 #include <zraka/convergence.hpp>
 #include <zraka/error.hpp>
+#include <zraka/image_error.hpp>
 #include <zraka/image_io.hpp>
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/render.hpp>
@@ -50,15 +51,6 @@ rgb unlit(const scene& sc, const ray& r) {
   return evaluate(sc.materials[sh.material].albedo, sh.h.p, sh.h.facing_normal(), sh.h.uv);
 }
 // [end]
-
-double rmse(const image& a, const image& b) {
-  double sum = 0;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-    const vec3 d = vec3(a.pixels[i]) - vec3(b.pixels[i]);
-    sum += glm::dot(d, d) / 3;
-  }
-  return std::sqrt(sum / double(a.pixels.size()));
-}
 
 // Copies a size x size crop at (x0, y0), magnified `zoom` times, into `out` at (ox, oy).
 void paste_crop(const image& src, int x0, int y0, int size, int zoom, image& out, int ox, int oy) {

@@ -14,6 +14,7 @@
 // rendered in the same run (with another seed, so its noise is independent).
 #include <zraka/convergence.hpp>
 #include <zraka/error.hpp>
+#include <zraka/image_error.hpp>
 #include <zraka/image_io.hpp>
 #include <zraka/pixel_sampling.hpp>
 #include <zraka/render.hpp>
@@ -108,14 +109,6 @@ rgb direct(const scene& sc, const light_set& lights, const ray& r, strategy s, d
 }
 // [end]
 
-double rmse(const image& a, const image& b) {
-  double sum = 0;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-    const vec3 d = vec3(a.pixels[i]) - vec3(b.pixels[i]);
-    sum += glm::dot(d, d) / 3;
-  }
-  return std::sqrt(sum / double(a.pixels.size()));
-}
 double mean_value(const image& a) {
   double sum = 0;
   for (const rgb& p : a.pixels) sum += (double(p.x) + p.y + p.z) / 3;

@@ -52,18 +52,7 @@ inline std::string& last_glfw_error() {
 // GLFW for the whole program (step 1 of the life cycle: the window and the context).
 class glfw_session {
  public:
-  glfw_session() {
-    glfwSetErrorCallback([](int, const char* text) { detail::last_glfw_error() = text; });
-    if (!glfwInit()) {
-      const char* display = std::getenv("DISPLAY");
-      std::string why = detail::last_glfw_error();
-      if (!display || !*display)
-        throw error("cannot open a window: " + why + ". This program needs an X display; on a "
-                    "machine without one, run it under a virtual X server: xvfb-run -a -s "
-                    "\"-screen 0 1280x720x24\" <program> --frames 10 --screenshot out.png");
-      throw error("cannot initialise GLFW: " + why);
-    }
-  }
+  glfw_session();  // or an error that says how to run without a display
   ~glfw_session() { glfwTerminate(); }
   glfw_session(const glfw_session&) = delete;
   glfw_session& operator=(const glfw_session&) = delete;
@@ -72,19 +61,7 @@ class glfw_session {
 // A window with an OpenGL `major.minor` core-profile context, made current.
 class window {
  public:
-  window(int width, int height, const std::string& title, int major, int minor) {
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, major);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, minor);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);  // screenshots have the size asked for
-    w_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
-    if (!w_)
-      throw error("cannot create a window with an OpenGL " + std::to_string(major) + "." +
-                  std::to_string(minor) + " core context: " + detail::last_glfw_error());
-    glfwMakeContextCurrent(w_);
-    glfwSwapInterval(0);  // do not wait for a (virtual) vertical retrace
-  }
+  window(int width, int height, const std::string& title, int major, int minor);
   ~window() { glfwDestroyWindow(w_); }
   window(const window&) = delete;
   window& operator=(const window&) = delete;
@@ -178,10 +155,7 @@ inline GLint uniform(GLuint program, const char* name) {
   return loc;
 }
 
-// [listing gl-screenshot]
-// The pixels of the current read buffer as 8-bit RGB, top row first. OpenGL's row 0 is the
-// bottom one, and its default 4-byte row alignment would pad rows whose size is not a multiple
-// of 4, so both are set right here.
+// A screenshot: 8-bit RGB, 3 bytes per pixel (read_pixels below).
 struct rgb8_pixels {
   int width = 0, height = 0;
   std::vector<std::uint8_t> bytes;  // 3 per pixel, rows top to bottom
@@ -191,7 +165,43 @@ struct rgb8_pixels {
   }
 };
 
-inline rgb8_pixels read_pixels(int width, int height) {
+ZRAKA_GL_FN rgb8_pixels read_pixels(int width, int height);  // top row first
+ZRAKA_GL_FN image to_image(const rgb8_pixels& p);              // decoded from sRGB to linear
+
+#if ZRAKA_GL_DEFINITIONS
+// Step 1 of the life cycle, once per program.
+ZRAKA_GL_FN glfw_session::glfw_session() {
+  glfwSetErrorCallback([](int, const char* text) { detail::last_glfw_error() = text; });
+  if (!glfwInit()) {
+    const char* display = std::getenv("DISPLAY");
+    std::string why = detail::last_glfw_error();
+    if (!display || !*display)
+      throw error("cannot open a window: " + why + ". This program needs an X display; on a "
+                  "machine without one, run it under a virtual X server: xvfb-run -a -s "
+                  "\"-screen 0 1280x720x24\" <program> --frames 10 --screenshot out.png");
+    throw error("cannot initialise GLFW: " + why);
+  }
+}
+
+ZRAKA_GL_FN window::window(int width, int height, const std::string& title, int major, int minor) {
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, major);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, minor);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);  // screenshots have the size asked for
+  w_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  if (!w_)
+    throw error("cannot create a window with an OpenGL " + std::to_string(major) + "." +
+                std::to_string(minor) + " core context: " + detail::last_glfw_error());
+  glfwMakeContextCurrent(w_);
+  glfwSwapInterval(0);  // do not wait for a (virtual) vertical retrace
+}
+
+// [listing gl-screenshot]
+// The pixels of the current read buffer as 8-bit RGB, top row first. OpenGL's row 0 is the
+// bottom one, and its default 4-byte row alignment would pad rows whose size is not a multiple
+// of 4, so both are set right here.
+ZRAKA_GL_FN rgb8_pixels read_pixels(int width, int height) {
   rgb8_pixels out{width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 3)};
   std::vector<std::uint8_t> bottom_up(out.bytes.size());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -206,7 +216,7 @@ inline rgb8_pixels read_pixels(int width, int height) {
 // The framebuffer's bytes are what the screen shows, i.e. sRGB-encoded; zraka::image is linear,
 // so they are decoded here and write_png encodes them back to the same bytes (exactly, for all
 // 256 values: the sRGB curve's slope keeps neighbouring bytes more than a rounding step apart).
-inline image to_image(const rgb8_pixels& p) {
+ZRAKA_GL_FN image to_image(const rgb8_pixels& p) {
   image img(p.width, p.height);
   for (int y = 0; y < p.height; ++y)
     for (int x = 0; x < p.width; ++x) {
@@ -217,6 +227,7 @@ inline image to_image(const rgb8_pixels& p) {
   return img;
 }
 // [end]
+#endif
 
 }  // namespace zraka::gl
 #endif

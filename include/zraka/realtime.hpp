@@ -42,6 +42,7 @@ class gpu_renderer {
   gpu_renderer(const cl::context& c, const gpu_scene& s, int width, int height, std::uint64_t seed,
                bool all_features = false,
                const std::filesystem::path& kernel_file = "kernels/pathtrace.cl");
+  ~gpu_renderer();
 
   const std::string& options() const { return options_; }
   double build_seconds() const { return build_seconds_; }
@@ -49,28 +50,11 @@ class gpu_renderer {
   int height() const { return height_; }
   std::uint32_t samples() const { return samples_; }  // per pixel, summed so far
 
-  // [listing realtime-launch]
   // Adds n samples per pixel (enqueued; read_* waits for it).
-  void launch(std::uint32_t n) {
-    const gpu_scene& s = scene_;
-    const cl_float4 bg = {{s.background.x, s.background.y, s.background.z, 0.0f}};
-    cl::set_args(kernel_, spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, light_tris_,
-                 camera_, accum_, accum_sq_, display_, cl_int(s.spheres.size()), cl_int(s.quads.size()),
-                 cl_int(s.planes.size()), cl_int(s.lights.size()), cl_int(s.nodes.size()),
-                 cl_uint(width_), cl_uint(height_), cl_uint(samples_), cl_uint(n),
-                 cl_ulong(seed_), bg, textures_, texels_, tri_uvs_, cl_int(s.triangle_uvs.empty() ? 0 : 1), env_,
-                 env_tables_, noise_);
-    cl::run_2d(ctx_, kernel_, std::size_t(width_), std::size_t(height_));
-    samples_ += n;
-  }
+  void launch(std::uint32_t n);
   // The camera moved (or anything else changed): the next launch starts the sums afresh.
-  void set_camera(const gpu_camera& cam) {
-    scene_.camera = cam;
-    ctx_.write(camera_, sizeof cam, &cam);
-    reset();
-  }
+  void set_camera(const gpu_camera& cam);
   void reset() { samples_ = 0; }
-  // [end]
 
   void finish() const { ctx_.finish(); }
 
@@ -155,6 +139,30 @@ ZRAKA_OPENCL_FN gpu_renderer::gpu_renderer(const cl::context& c, const gpu_scene
   accum_sq_ = c.make_buffer(CL_MEM_READ_WRITE, pixels * 16);
   display_ = c.make_buffer(CL_MEM_WRITE_ONLY, pixels * 4);
 }
+
+ZRAKA_OPENCL_FN gpu_renderer::~gpu_renderer() = default;
+
+// [listing realtime-launch]
+// Adds n samples per pixel (enqueued; read_* waits for it).
+ZRAKA_OPENCL_FN void gpu_renderer::launch(std::uint32_t n) {
+  const gpu_scene& s = scene_;
+  const cl_float4 bg = {{s.background.x, s.background.y, s.background.z, 0.0f}};
+  cl::set_args(kernel_, spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, light_tris_,
+               camera_, accum_, accum_sq_, display_, cl_int(s.spheres.size()), cl_int(s.quads.size()),
+               cl_int(s.planes.size()), cl_int(s.lights.size()), cl_int(s.nodes.size()),
+               cl_uint(width_), cl_uint(height_), cl_uint(samples_), cl_uint(n),
+               cl_ulong(seed_), bg, textures_, texels_, tri_uvs_, cl_int(s.triangle_uvs.empty() ? 0 : 1), env_,
+               env_tables_, noise_);
+  cl::run_2d(ctx_, kernel_, std::size_t(width_), std::size_t(height_));
+  samples_ += n;
+}
+// The camera moved (or anything else changed): the next launch starts the sums afresh.
+ZRAKA_OPENCL_FN void gpu_renderer::set_camera(const gpu_camera& cam) {
+  scene_.camera = cam;
+  ctx_.write(camera_, sizeof cam, &cam);
+  reset();
+}
+// [end]
 
 ZRAKA_OPENCL_FN void gpu_renderer::read_display_async(std::vector<std::uint8_t>& rgba) {
   rgba.resize(std::size_t(width_) * std::size_t(height_) * 4);

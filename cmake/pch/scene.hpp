@@ -1,0 +1,26 @@
+// The precompiled header of the programs that render scenes (a chapter or benchmark whose sources
+// include one of the headers below, see zraka_pch_kind in cmake/ZrakaPch.cmake): the common part
+// plus zraka's scene-level headers, whose parsing was most of such a unit's front end.
+// Measured (tools/build_times.sh, touch main.cpp): 2.3-pathtrace 2.39 -> 1.77 s, 6.4-metropolis
+// 2.76 -> 2.09 s. The earlier programs (1.0-1.6, 3.1, ...) keep programs.hpp: they include few
+// of these headers, and loading this larger PCH would cost them more than it saves.
+#pragma once
+#include "common.hpp"
+
+#include <zraka/convergence.hpp>
+#include <zraka/error.hpp>
+#include <zraka/image_error.hpp>
+#include <zraka/image_io.hpp>
+#include <zraka/lights.hpp>
+#include <zraka/path.hpp>
+#include <zraka/pixel_sampling.hpp>
+#include <zraka/preview_window.hpp>
+#include <zraka/program_options.hpp>
+#include <zraka/progressive.hpp>
+#include <zraka/reference.hpp>
+#include <zraka/render.hpp>
+#include <zraka/samplers.hpp>
+#include <zraka/scene.hpp>
+#include <zraka/scene_argument.hpp>
+#include <zraka/scene_query.hpp>
+#include <zraka/stopwatch.hpp>
