@@ -13,8 +13,8 @@
 # Decided against at first, when a chapter's unit was ~20 CPU-s of -O3 code generation that no
 # PCH saves; since the heavy non-template parts are compiled once (zraka::compiled), a scene
 # chapter's unit is ~2.4 s, about half of it parsing zraka's headers, so now they are in:
-# 2.3-pathtrace 2.39 -> 1.77 s, 6.4-metropolis 2.76 -> 2.09 s, 4.3-realtime 2.66 -> see
-# tools/build_times.sh. The price: editing one of those headers rebuilds the PCH (~10 s) and
+# 2.3-pathtrace 2.39 -> 1.72 s, 6.4-metropolis 2.76 -> 2.08 s, 4.3-realtime (gpu.hpp) 3.43 -> 2.15 s
+# (tools/build_times.sh). The price: editing one of those headers rebuilds the PCH (~10 s) and
 # then every target that uses it; that edit already rebuilt zraka::compiled's units (20-47 s,
 # measured touching path.hpp, sphere.hpp, program_options.hpp), which the PCH builds beside.
 # The early chapters keep programs.hpp (a larger PCH costs them more to load than it saves),
