@@ -78,17 +78,14 @@ function(zraka_use_pch_in_directory dir)
     if("zraka_test_main" IN_LIST libs OR "zraka::test_main" IN_LIST libs)
       zraka_use_pch(tests ${target})
     else()
-      get_target_property(srcs ${target} SOURCES)
-      get_target_property(sdir ${target} SOURCE_DIR)
-      list(TRANSFORM srcs PREPEND ${sdir}/ REGEX "^[^/]")
-      zraka_pch_kind(kind ${srcs})
-      zraka_use_pch(${kind} ${target})
+      zraka_use_program_pch(${target})
     endif()
   endforeach()
 endfunction()
 
-# zraka_pch_kind(<out_var> <source>...): "scene" when a source includes one of scene.hpp's zraka
-# headers (cmake/pch/scene.hpp), else "programs".
+# zraka_pch_kind(<out_var> <source>...): "scene" when a source includes a header that brings in
+# the scene and most of cmake/pch/scene.hpp with it, else "programs" (a unit that includes only,
+# say, error.hpp would load the larger PCH for nothing).
 function(zraka_pch_kind out_var)
   set(kind programs)
   foreach(src IN LISTS ARGN)
@@ -98,4 +95,16 @@ function(zraka_pch_kind out_var)
     endif()
   endforeach()
   set(${out_var} ${kind} PARENT_SCOPE)
+endfunction()
+
+# zraka_use_program_pch(<target>...): each program target gets the PCH zraka_pch_kind picks from
+# its own sources.
+function(zraka_use_program_pch)
+  foreach(target IN LISTS ARGN)
+    get_target_property(srcs ${target} SOURCES)
+    get_target_property(sdir ${target} SOURCE_DIR)
+    list(TRANSFORM srcs PREPEND ${sdir}/ REGEX "^[^/]")
+    zraka_pch_kind(kind ${srcs})
+    zraka_use_pch(${kind} ${target})
+  endforeach()
 endfunction()
