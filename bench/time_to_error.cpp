@@ -168,7 +168,7 @@ int main(int argc, char** argv) {
   cli.scene = "scenes/rtiow-cornell.yaml";
   cli.scene_settings = true;
   double target = 0.014, max_seconds = 60;
-  int ref_spp = 8192;
+  int ref_spp = 8192, rr_depth = path_options{}.rr_depth;
   std::string integrators = "mis,nee,bdpt", samplers = "independent", precisions = "double,float";
   std::string mitsuba = "build/mitsuba-venv/bin/python";
   cli.app.add_option("--target", target, "the RMSE to reach, in RTIOW's output space (gamma 2, clamped to [0, 1])");
@@ -179,6 +179,7 @@ int main(int argc, char** argv) {
   cli.app.add_option("--samplers", samplers, std::string("comma-separated samplers for the path tracers: ") + sampler_names +
                          " (stratified is stratified over 65536 spp, the most a run may reach: a run stopped "
                          "earlier has a random subset of the cells)");
+  cli.app.add_option("--rr-depth", rr_depth, "the path tracers' Russian roulette starts at this bounce (the reference keeps the default)");
   cli.app.add_option("--precisions", precisions, "comma-separated: double, float (the path tracers' arithmetic)");
   cli.app.add_option("--mitsuba", mitsuba,
                      "the Python that has the mitsuba package (relative: to the checkout); none: leave Mitsuba out");
@@ -262,6 +263,7 @@ int main(int argc, char** argv) {
       }
       path_options p = po;
       p.method = parse_integrator(m);
+      p.rr_depth = rr_depth;
       // One progressive run of path tracer `tracer` with sampler s; T is its precision.
       auto run = [&]<class T>(const path_tracer_t<T>& tracer, const typename camera_t<T>::prepared& cam,
                               const std::string& s) {

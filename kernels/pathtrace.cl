@@ -538,6 +538,8 @@ bool occluded(const scene_t* sc, float3 o, float3 D, float t_max) {
 
 // ---------------------------------------------------------------- small helpers (vec.hpp, sampling.hpp)
 float3 normalize_or_zero(float3 v) {
+  const float d = dot(v, v);
+  if (d >= 0x1p-60f && d <= 0x1p60f) return v / sqrt(d);  // the common range: no scaling needed
   if (!(isfinite(v.x) && isfinite(v.y) && isfinite(v.z))) return (float3)(0.0f);
   const float m = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
   if (!(m > 0.0f)) return (float3)(0.0f);

@@ -265,3 +265,20 @@ TEST_CASE_TEMPLATE("each BRDF's sample() follows its pdf() (chi-square)", T, flo
                               phong_brdf_t<T>{vec3_t<T>(0.4), T(20)}},
       0.785, 13);
 }
+
+// A Lambertian material's BRDF is a lambert_phong_brdf_t without a glossy part (material.hpp's
+// brdf_at); eval and pdf then skip the lobe. The shortcut must give the full formula's bits: the
+// diffuse term plus a zero lobe, and the mixture with the lobe's weight 0.
+TEST_CASE_TEMPLATE("bxdf: lambert_phong without a glossy part is the mixture's numbers exactly", T, float, double) {
+  const lambert_phong_brdf_t<T> f{lambert_brdf_t<T>{vec3_t<T>(T(0.73), T(0.5), T(0.1))},
+                                  phong_brdf_t<T>{vec3_t<T>(0), T(32)}};
+  const vec3_t<T> n = normalize_or_zero(vec3_t<T>(T(0.2), T(1), T(-0.3)));
+  rng g(11);
+  for (int i = 0; i < 2000; ++i) {
+    const vec3_t<T> wo = normalize_or_zero(vec3_t<T>(vec3(g.uniform(), g.uniform(), g.uniform()) - 0.5));
+    const vec3_t<T> wi = normalize_or_zero(vec3_t<T>(vec3(g.uniform(), g.uniform(), g.uniform()) - 0.5));
+    CHECK(f.eval(wi, wo, n) == f.diffuse.eval(wi, wo, n) + f.glossy.eval(wi, wo, n));
+    const T full = same_hemisphere(wi, wo, n) ? f.density(wo, n).pdf(wi) : T(0);
+    CHECK(f.pdf(wi, wo, n) == full);
+  }
+}

@@ -75,6 +75,30 @@ TEST_CASE_TEMPLATE("vec: normalize_or_zero for huge, tiny, zero, NaN and inf", T
     CHECK(normalize_or_zero(v) == vec3_t<T>(0));
 }
 
+// The unscaled division runs only where ||v||^2 is in [2^-60, 2^60] (float) or [2^-500, 2^500]
+// (double). Across both edges, and with components too small to count beside the largest, the
+// result agrees with the scaled form to 2 ulps and is unit to 3 ulps.
+TEST_CASE_TEMPLATE("vec: normalize_or_zero is the same on both sides of its fast range", T, float, double) {
+  const int edge = sizeof(T) == 4 ? 30 : 250;  // ||v|| = 2^edge: ||v||^2 at the range's end
+  const T eps = std::numeric_limits<T>::epsilon();
+  auto scaled = [](const vec3_t<T>& v) {  // the careful form alone
+    const vec3_t<T> s = v / max_component(glm::abs(v));
+    return s / std::sqrt(glm::dot(s, s));
+  };
+  rng g(7);
+  for (int e : {-edge - 1, -edge, -edge + 1, 0, edge - 1, edge, edge + 1})
+    for (int i = 0; i < 200; ++i) {
+      const T scale = std::ldexp(T(1), e);
+      vec3_t<T> v = random_vec<T>(g, 1.0) * scale;
+      if (i % 4 == 0) v.y = std::ldexp(T(1), e - 40), v.z = std::numeric_limits<T>::denorm_min();  // squares that underflow
+      if (v == vec3_t<T>(0)) continue;
+      const vec3_t<T> n = normalize_or_zero(v), m = scaled(v);
+      INFO("scale 2^", e, ", v = (", v.x, ", ", v.y, ", ", v.z, ")");
+      for (int a = 0; a < 3; ++a) CHECK(std::abs(n[a] - m[a]) <= 2 * eps);
+      CHECK(std::abs(glm::length(n) - T(1)) <= 3 * eps);
+    }
+}
+
 TEST_CASE_TEMPLATE("vec: is_finite, max_component, constants", T, float, double) {
   CHECK(is_finite(vec3_t<T>(1, 2, 3)));
   CHECK_FALSE(is_finite(vec3_t<T>(1, std::numeric_limits<T>::quiet_NaN(), 3)));

@@ -159,11 +159,16 @@ template <class T> struct lambert_phong_brdf_t {
     return {phong_lobe_t<T>(glossy.mirror(wo, n), glossy.s), cosine_hemisphere_t<T>(n),
             glossy_probability()};
   }
+  // Without a glossy part (a Lambertian material) the lobe is not evaluated: its term is 0, and
+  // the sum and the mixture are then the diffuse term's bits exactly (path tracers call these per
+  // bounce, and the lobe's cos^s is a pow).
   vec3_t<T> eval(const vec3_t<T>& wi, const vec3_t<T>& wo, const vec3_t<T>& n) const {
+    if (glossy.rho_s == vec3_t<T>(0)) return diffuse.eval(wi, wo, n);
     return diffuse.eval(wi, wo, n) + glossy.eval(wi, wo, n);
   }
   T pdf(const vec3_t<T>& wi, const vec3_t<T>& wo, const vec3_t<T>& n) const {
     if (!same_hemisphere(wi, wo, n)) return T(0);
+    if (glossy.rho_s == vec3_t<T>(0)) return cosine_hemisphere_t<T>(n).pdf(wi);  // the mixture's b alone
     return density(wo, n).pdf(wi);
   }
   std::optional<brdf_sample_t<T>> sample(const vec3_t<T>& wo, const vec3_t<T>& n,

@@ -429,7 +429,8 @@ std::optional<surface_point_t<T>> light_set_t<T>::sample_surface(const light& l,
     case shape_kind::quad: {
       const auto& q = sc_.quads[i].shape;
       const T a = clamp_unit(u.x), b = clamp_unit(u.y);
-      return surface_point_t<T>{q.point(a, b), q.normal(),
+      const vec3_t<T> n = i < sc_.accel.quad_planes.size() ? sc_.accel.quad_planes[i].N : q.normal();  // the same bits
+      return surface_point_t<T>{q.point(a, b), n,
                                 gamma<T>(4) * (glm::abs(q.corner) + glm::abs(a * q.u) + glm::abs(b * q.v))};
     }
     case shape_kind::triangle: return on_triangle(sc_.triangles[i].shape, u, gamma<T>(7));

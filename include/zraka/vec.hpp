@@ -34,8 +34,13 @@ template <class T> T max_component(const vec3_t<T>& v) { return std::max({v.x, v
 // [listing normalize]
 // v / ||v||, or the zero vector when v is zero or has a NaN or infinite component. Scaling by
 // the largest component first keeps ||v||^2 from overflowing (1e200) or underflowing (1e-200).
-// (The finiteness test comes first: max_component of (1, NaN, 1) is 1, not NaN.)
+// That costs three divisions more, so it is done only where ||v||^2 leaves the range in which
+// no square can overflow or lose digits that count (2^+-60 in float, 2^+-500 in double); a NaN
+// or an infinity falls outside that range too. (The finiteness test comes before the scaling:
+// max_component of (1, NaN, 1) is 1, not NaN.)
 template <class T> vec3_t<T> normalize_or_zero(const vec3_t<T>& v) {
+  constexpr T lo = sizeof(T) == 4 ? T(0x1p-60) : T(0x1p-500), hi = sizeof(T) == 4 ? T(0x1p60) : T(0x1p500);
+  if (const T d = glm::dot(v, v); d >= lo && d <= hi) return v / std::sqrt(d);
   if (!is_finite(v)) return vec3_t<T>(0);
   const T m = max_component(glm::abs(v));
   if (!(m > T(0))) return vec3_t<T>(0);
