@@ -17,6 +17,8 @@
 #include <zraka/ray.hpp>
 #include <zraka/spawn.hpp>
 
+#include <optional>
+
 namespace zraka {
 
 // Named parallelogram_t, not quad_t: glibc's <sys/types.h> already has a global quad_t, which
@@ -46,41 +48,55 @@ template <class T> struct quad_plane_t {
       : n_raw(glm::cross(q.u, q.v)), N(normalize_or_zero(n_raw)), w(n_raw / glm::dot(n_raw, n_raw)) {}
 };
 
-// The nearest hit with t in (t_min, t_max); fills `rec` only on a hit. pl is quad_plane_t(q).
+// Where a ray meets the quad with t in (t_min, t_max): t and the plane coordinates (a, b), or
+// none. pl is quad_plane_t(q).
+template <class T> struct quad_root_t {
+  T t, a, b;
+};
+
 // [listing quad-intersect]
 template <class T>
-bool intersect(const parallelogram_t<T>& q, const quad_plane_t<T>& pl, const ray_t<T>& r, T t_min, T t_max,
-               hit_t<T>& rec) {
+std::optional<quad_root_t<T>> quad_root(const parallelogram_t<T>& q, const quad_plane_t<T>& pl, const ray_t<T>& r,
+                                        T t_min, T t_max) {
   const vec3_t<T>& N = pl.N;
   const vec3_t<T> D = r.direction;
   const T denom = glm::dot(N, D);
   // Parallel (or NaN): the sign of N.D is lost in its rounding error.
-  if (!(std::abs(denom) > gamma<T>(3) * glm::dot(glm::abs(N), glm::abs(D)))) return false;
+  if (!(std::abs(denom) > gamma<T>(3) * glm::dot(glm::abs(N), glm::abs(D)))) return std::nullopt;
   const vec3_t<T> QO = q.corner - r.origin;
   const T s = glm::dot(N, QO);  // signed distance from the origin to the plane, along N
-  // Its error: the subtraction and the dot product round (gamma(4) of the magnitudes), and N is
-  // itself a few ulps off perpendicular to u and v (gamma(4) of the distance from Q).
+  const T t = s / denom;
+  if (!(t > t_min && t < t_max)) return std::nullopt;  // first the cheaper test that rejects most
+  // The error of s: the subtraction and the dot product round (gamma(4) of the magnitudes), and
+  // N is itself a few ulps off perpendicular to u and v (gamma(4) of the distance from Q).
   const T s_error = gamma<T>(4) * glm::dot(glm::abs(N), glm::abs(q.corner) + glm::abs(r.origin)) +
                     gamma<T>(4) * glm::length(QO);
-  if (!(std::abs(s) > s_error)) return false;  // origin on the plane: it cannot see this quad
-  const T t = s / denom;
-  if (!(t > t_min && t < t_max)) return false;
+  if (!(std::abs(s) > s_error)) return std::nullopt;  // origin on the plane: it cannot see this quad
 
   // Plane coordinates: with d = P - Q = a u + b v, a = (d x v).n / |n|^2, b = (u x d).n / |n|^2.
   const vec3_t<T> d = r.at(t) - q.corner;
   const vec3_t<T>& w = pl.w;
   const T a = glm::dot(w, glm::cross(d, q.v));
   const T b = glm::dot(w, glm::cross(q.u, d));
-  if (!(a >= T(0) && a <= T(1) && b >= T(0) && b <= T(1))) return false;
-  // [end]
+  if (!(a >= T(0) && a <= T(1) && b >= T(0) && b <= T(1))) return std::nullopt;
+  return quad_root_t<T>{t, a, b};
+}
+// [end]
 
-  rec.t = t;
+// The nearest hit with t in (t_min, t_max); fills `rec` only on a hit.
+template <class T>
+bool intersect(const parallelogram_t<T>& q, const quad_plane_t<T>& pl, const ray_t<T>& r, T t_min, T t_max,
+               hit_t<T>& rec) {
+  const auto root = quad_root(q, pl, r, t_min, t_max);
+  if (!root) return false;
+  const T a = root->a, b = root->b;
+  rec.t = root->t;
   rec.p = q.point(a, b);
   // Q + a u + b v: one rounding per product and per sum, three terms (gamma(3), and one spare).
   rec.p_error = gamma<T>(4) * (glm::abs(q.corner) + glm::abs(a * q.u) + glm::abs(b * q.v));
-  rec.normal = N;
+  rec.normal = pl.N;
   rec.uv = {a, b};
-  rec.set_face(D);
+  rec.set_face(r.direction);
   return true;
 }
 
@@ -89,9 +105,13 @@ bool intersect(const parallelogram_t<T>& q, const ray_t<T>& r, T t_min, T t_max,
   return intersect(q, quad_plane_t<T>(q), r, t_min, t_max, rec);
 }
 
+// Shadow rays only ask whether the quad is in the way: no hit point is built.
+template <class T>
+bool occludes(const parallelogram_t<T>& q, const quad_plane_t<T>& pl, const ray_t<T>& r, T t_min, T t_max) {
+  return quad_root(q, pl, r, t_min, t_max).has_value();
+}
 template <class T> bool occludes(const parallelogram_t<T>& q, const ray_t<T>& r, T t_min, T t_max) {
-  hit_t<T> ignored;
-  return intersect(q, r, t_min, t_max, ignored);
+  return occludes(q, quad_plane_t<T>(q), r, t_min, t_max);
 }
 
 }  // namespace zraka

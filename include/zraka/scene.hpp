@@ -288,8 +288,12 @@ bool intersect_one(const mesh_object_t<T>& mo, const ray_t<T>& r, T t_min, T t_m
 
 // Does the object block the segment (0, t_max)? Meshes skip rebuilding the hit.
 template <class S, class T> bool blocks_one(const object_t<S>& o, const ray_t<T>& r, T t_max) {
-  hit_t<T> ignored;
-  return intersect(o.shape, r, T(0), t_max, ignored);
+  if constexpr (requires { occludes(o.shape, r, T(0), t_max); }) {
+    return occludes(o.shape, r, T(0), t_max);  // the shape's own test, which builds no hit
+  } else {
+    hit_t<T> ignored;
+    return intersect(o.shape, r, T(0), t_max, ignored);
+  }
 }
 template <class T> bool blocks_one(const mesh_object_t<T>& mo, const ray_t<T>& r, T t_max) {
   const ray_t<float> rf(vec3_t<float>(r.origin), vec3_t<float>(r.direction));
@@ -344,10 +348,8 @@ bool intersect_object(const scene_t<T>& sc, object_ref o, const ray_t<T>& r, T t
 }
 template <class T> bool object_blocks(const scene_t<T>& sc, object_ref o, const ray_t<T>& r, T t_max) {
   const auto i = std::size_t(o.index);
-  if (o.kind == shape_kind::quad && i < sc.accel.quad_planes.size()) {
-    hit_t<T> ignored;
-    return intersect(sc.quads[i].shape, sc.accel.quad_planes[i], r, T(0), t_max, ignored);
-  }
+  if (o.kind == shape_kind::quad && i < sc.accel.quad_planes.size())
+    return occludes(sc.quads[i].shape, sc.accel.quad_planes[i], r, T(0), t_max);
   return visit_object(sc, o, [&](const auto& obj) { return detail::blocks_one(obj, r, t_max); });
 }
 // The object's box, padded for rounding; empty for a plane.

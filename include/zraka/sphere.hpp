@@ -16,6 +16,8 @@
 #include <zraka/ray.hpp>
 #include <zraka/spawn.hpp>
 
+#include <optional>
+
 namespace zraka {
 
 // [listing sphere]
@@ -33,31 +35,44 @@ template <class T> struct sphere_t {
 
 using sphere = sphere_t<double>;
 
-// The nearest hit with t in the open interval (t_min, t_max); fills `rec` only on a hit.
+// The root a ray meets first in the open interval (t_min, t_max); `entering` when it is the
+// smaller of the two (the ray enters the sphere there).
+template <class T> struct sphere_root_t {
+  T t;
+  bool entering;
+};
+
 // [listing sphere-intersect]
 template <class T>
-bool intersect(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& rec) {
-  if (!s.valid()) return false;
+std::optional<sphere_root_t<T>> sphere_root(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max) {
+  if (!s.valid()) return std::nullopt;
   const vec3_t<T> f = r.origin - s.center;
   const vec3_t<T> D = r.direction;
   const T a = glm::dot(D, D);  // 1 for a valid ray, 0 for an invalid one
-  if (!(a > T(0))) return false;
+  if (!(a > T(0))) return std::nullopt;
   const T b = glm::dot(f, D);
   const T c = glm::dot(f, f) - s.radius * s.radius;
   const vec3_t<T> l = f - (b / a) * D;  // centre-to-line offset
   const T disc = a * (s.radius - glm::length(l)) * (s.radius + glm::length(l));
-  if (!(disc >= T(0))) return false;  // also false for NaN
+  if (!(disc >= T(0))) return std::nullopt;  // also for NaN
 
   const T q = -(b + std::copysign(std::sqrt(disc), b));
   T t0 = c / q, t1 = q / a;  // q == 0 only when both roots are 0: t0 is NaN, rejected below
   if (t0 > t1) std::swap(t0, t1);
-  T t = t0;
-  if (!(t > t_min && t < t_max)) {
-    t = t1;
-    if (!(t > t_min && t < t_max)) return false;
-  }
-  // [end]
+  if (t0 > t_min && t0 < t_max) return sphere_root_t<T>{t0, true};
+  if (t1 > t_min && t1 < t_max) return sphere_root_t<T>{t1, false};
+  return std::nullopt;
+}
+// [end]
 
+// The nearest hit with t in the open interval (t_min, t_max); fills `rec` only on a hit.
+template <class T>
+bool intersect(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& rec) {
+  const auto root = sphere_root(s, r, t_min, t_max);
+  if (!root) return false;
+  const T t = root->t;
+  const vec3_t<T> f = r.origin - s.center;
+  const vec3_t<T> D = r.direction;
   rec.t = t;
   // Reproject onto the surface: the radial error of f + tD is removed, and what is left is
   // bounded as in pbrt (gamma(5) relative to the centre, plus one rounding for adding c back).
@@ -65,7 +80,7 @@ bool intersect(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max, hit_t<
   // taken head-on (against D when entering, along D when leaving) instead of dividing by 0.
   vec3_t<T> local = f + t * D;
   const T len = glm::length(local);
-  if (!(len > T(0)) || !std::isfinite(len)) local = (t == t0 ? -D : D);
+  if (!(len > T(0)) || !std::isfinite(len)) local = root->entering ? -D : D;
   const vec3_t<T> on = local * (s.radius / glm::length(local));
   rec.p = s.center + on;
   rec.p_error = gamma<T>(6) * (glm::abs(on) + glm::abs(rec.p));
@@ -80,8 +95,7 @@ bool intersect(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max, hit_t<
 
 // Shadow rays only ask whether anything is in the way.
 template <class T> bool occludes(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max) {
-  hit_t<T> ignored;
-  return intersect(s, r, t_min, t_max, ignored);
+  return sphere_root(s, r, t_min, t_max).has_value();  // the hit point, normal and uv are not needed
 }
 
 }  // namespace zraka
