@@ -13,12 +13,13 @@
 // renders 1, 2, 4, ... spp, each a render of its own (tools/mitsuba_reference.py --doubling),
 // after zraka is done, so the two never share the cores. The time to the target is interpolated
 // log-log between the rows that bracket it (seconds_to_reach, progressive.hpp).
-// The path tracers run in double and in float (scene_precision.hpp), each a row. Each row also
+// The path tracers and BDPT run in double and in float (scene_precision.hpp), each a row;
+// --rr-depth moves where their Russian roulette (and the kernel's) starts. Each row also
 // gives its rate in million samples (paths) per second, Mitsuba's too. `kernel` is book 4.3's
 // OpenCL path tracer (mis, float, specialised to the scene) on the first OpenCL device, in
 // launches that double the samples; on PoCL it runs on the same cores (--threads does not bind it).
 //   build/bin/time_to_error [--scene S] [--target RMSE] [--max-seconds S] [--ref-spp N]
-//                           [--integrators mis,nee,bdpt,kernel] [--precisions double,float]
+//                           [--integrators mis,nee,bdpt,kernel] [--precisions double,float] [--rr-depth N]
 //                           [--mitsuba PYTHON|none] [--threads T]
 #include <zraka/bdpt.hpp>
 #include <zraka/cli.hpp>
@@ -179,8 +180,8 @@ int main(int argc, char** argv) {
   cli.app.add_option("--samplers", samplers, std::string("comma-separated samplers for the path tracers: ") + sampler_names +
                          " (stratified is stratified over 65536 spp, the most a run may reach: a run stopped "
                          "earlier has a random subset of the cells)");
-  cli.app.add_option("--rr-depth", rr_depth, "the path tracers' Russian roulette starts at this bounce (the reference keeps the default)");
-  cli.app.add_option("--precisions", precisions, "comma-separated: double, float (the path tracers' arithmetic)");
+  cli.app.add_option("--rr-depth", rr_depth, "Russian roulette starts at this bounce, in the path tracers and BDPT (the reference keeps the default)");
+  cli.app.add_option("--precisions", precisions, "comma-separated: double, float (the arithmetic of the path tracers and of BDPT)");
   cli.app.add_option("--mitsuba", mitsuba,
                      "the Python that has the mitsuba package (relative: to the checkout); none: leave Mitsuba out");
   if (const auto done = cli.parse(argc, argv)) return *done;
@@ -212,32 +213,37 @@ int main(int argc, char** argv) {
         sc, ref_spp, cli.seed, po, ro, [&](const std::string& h) { return output_file("tte" + tag + h + ".pfm").string(); },
         bad);
     const output_error err(ref);
-    std::printf("%s, %dx%d, at most %d bounces, %d threads: seconds to RMSE %.4f in RTIOW's output space\n"
+    std::printf("%s, %dx%d, at most %d bounces (Russian roulette from %d), %d threads: seconds to RMSE %.4f in RTIOW's output space\n"
                 "reference: mis, %d spp in two halves (%s), its own RMSE there %.5f, taken out\n\n%-26s %10s %8s %10s %14s\n",
-                cli.scene.c_str(), W, H, po.max_depth, resolve_threads(cli.threads), target, ref_spp, ref.files.c_str(),
+                cli.scene.c_str(), W, H, po.max_depth, rr_depth, resolve_threads(cli.threads), target, ref_spp, ref.files.c_str(),
                 std::sqrt(err.noise_mse), "method", "seconds", "spp", "rmse", "M samples/s");
     std::fflush(stdout);
 
     std::vector<result_t> results;
     for (const std::string& m : methods) {
       if (m == "bdpt") {
-        result_t r{"bdpt", convergence_log("bdpt on " + stem, {"rmse"}, "rmse", "spp")};
-        bdpt_options bo;
-        bo.max_depth = po.max_depth, bo.threads = cli.threads;
-        for (int n = 1; n <= 65536; n *= 2) {  // each row a render of its own
-          const stopwatch clock;
-          const image img = render_bdpt(sc, n, cli.seed, bo).img;
-          r.log.add(std::uint64_t(n), clock.seconds(), {err(img)});
-          if (r.log.rows().back().values[0] <= target || r.log.rows().back().seconds > max_seconds) break;
+        for (const std::string& precision : precision_names) {
+          const std::string method = "bdpt " + precision;
+          result_t r{method, convergence_log(method + " on " + stem, {"rmse"}, "rmse", "spp")};
+          bdpt_options bo;
+          bo.max_depth = po.max_depth, bo.rr_depth = rr_depth, bo.threads = cli.threads;
+          for (int n = 1; n <= 65536; n *= 2) {  // each row a render of its own
+            const stopwatch clock;
+            const image img = precision == "double" ? render_bdpt(sc, n, cli.seed, bo).img
+                                                    : render_bdpt(sc_float, n, cli.seed, bo).img;
+            r.log.add(std::uint64_t(n), clock.seconds(), {err(img)});
+            if (r.log.rows().back().values[0] <= target || r.log.rows().back().seconds > max_seconds) break;
+          }
+          print_row(r, target, double(W) * H);
+          results.push_back(std::move(r));
         }
-        print_row(r, target, double(W) * H);
-        results.push_back(std::move(r));
         continue;
       }
       if (m == "kernel") {
 #if defined(ZRAKA_TTE_OPENCL)
         path_options kp = po;
         kp.method = integrator::mis;
+        kp.rr_depth = rr_depth;
         const gpu_scene packed = pack_scene(sc, W, H, kp);  // refuses, by name, what the kernel lacks
         cl::context ctx(cl::pick_device(0));
         gpu_renderer gpu(ctx, packed, W, H, cli.seed);
