@@ -168,7 +168,10 @@ template <class T> struct lambert_phong_brdf_t {
   }
   T pdf(const vec3_t<T>& wi, const vec3_t<T>& wo, const vec3_t<T>& n) const {
     if (!same_hemisphere(wi, wo, n)) return T(0);
-    if (glossy.rho_s == vec3_t<T>(0)) return cosine_hemisphere_t<T>(n).pdf(wi);  // the mixture's b alone
+    if (glossy.rho_s == vec3_t<T>(0)) {  // the mixture's b alone: cos / pi, its frame's z being n
+      const T cos_i = glm::dot(wi, n);
+      return cos_i > T(0) ? cos_i / pi<T> : T(0);
+    }
     return density(wo, n).pdf(wi);
   }
   std::optional<brdf_sample_t<T>> sample(const vec3_t<T>& wo, const vec3_t<T>& n,
