@@ -249,17 +249,17 @@ bool hit_sphere(const sphere_t s, float3 o, float3 D, float t_max, hit_t* h) {
 #ifdef HAS_QUADS
 bool hit_quad(const quad_t q, float3 o, float3 D, float t_max, hit_t* h) {
   const float3 u = q.u.xyz, v = q.v.xyz, Q = q.corner.xyz;
-  const float3 n_raw = cross(u, v);
   const float3 N = q.normal_area.xyz;
   const float denom = dot(N, D);
   if (!(fabs(denom) > GAMMA(3) * dot(fabs(N), fabs(D)))) return false;
   const float3 QO = Q - o;
   const float s = dot(N, QO);
+  const float t = s / denom;
+  if (!(t > 0.0f && t < t_max)) return false;  // quad.hpp's order: the cheaper test first
   const float s_error = GAMMA(4) * dot(fabs(N), fabs(Q) + fabs(o)) + GAMMA(4) * length(QO);
   if (!(fabs(s) > s_error)) return false;
-  const float t = s / denom;
-  if (!(t > 0.0f && t < t_max)) return false;
   const float3 d = (o + t * D) - Q;
+  const float3 n_raw = cross(u, v);
   const float3 w = n_raw / dot(n_raw, n_raw);
   const float a = dot(w, cross(d, v));
   const float b = dot(w, cross(u, d));
