@@ -92,3 +92,25 @@ TEST_CASE_TEMPLATE("quad: spawned rays never re-hit the quad, over 1e-4..1e4 sca
   CHECK(hits > 800);
   CHECK(rehits == 0);
 }
+
+// Shadow rays ask occludes(), which stops at quad_root's decision; it must agree with intersect()
+// on every ray: rays from on, near and far from the quad, grazing ones, and invalid ones.
+TEST_CASE_TEMPLATE("quad: occludes agrees with intersect, ray by ray", T, float, double) {
+  rng g(23);
+  auto u = [&](double lo, double hi) { return T(lo + (hi - lo) * g.uniform()); };
+  for (int i = 0; i < 20000; ++i) {
+    const T scale = std::pow(T(10), u(-3, 3));
+    const parallelogram_t<T> q{vec3_t<T>(u(-1, 1), u(-1, 1), u(-1, 1)) * scale,
+                               vec3_t<T>(u(-1, 1), u(-1, 1), u(-1, 1)) * scale,
+                               vec3_t<T>(u(-1, 1), u(-1, 1), u(-1, 1)) * scale};
+    vec3_t<T> o = vec3_t<T>(u(-2, 2), u(-2, 2), u(-2, 2)) * scale;
+    if (i % 5 == 0) o = q.point(u(0, 1), u(0, 1));  // on the quad (up to rounding)
+    vec3_t<T> d(u(-1, 1), u(-1, 1), u(-1, 1));
+    if (i % 7 == 0) d = q.u + T(1e-6) * d;  // grazing
+    if (i % 101 == 0) d = vec3_t<T>(std::numeric_limits<T>::quiet_NaN(), 0, 1);
+    const ray_t<T> r(o, d);
+    const T t_max = i % 3 == 0 ? infinity<T> : u(0, 4) * scale;
+    hit_t<T> h;
+    CHECK(occludes(q, r, T(0), t_max) == intersect(q, r, T(0), t_max, h));
+  }
+}

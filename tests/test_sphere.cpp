@@ -431,3 +431,24 @@ TEST_CASE_TEMPLATE("sphere: hit record: normal, face, uv, contains_point", T, fl
   CHECK_FALSE(h.front_face);
   CHECK(occludes(s, ray_t<T>({T(0), T(0), T(0)}, {T(0), T(0), T(-1)}), T(0), T(10)));
 }
+
+// Shadow rays ask occludes(), which stops at sphere_root's decision; it must agree with
+// intersect() on every ray: from inside, on and outside the sphere, tangent ones, invalid ones.
+TEST_CASE_TEMPLATE("sphere: occludes agrees with intersect, ray by ray", T, float, double) {
+  rng g(29);
+  auto u = [&](double lo, double hi) { return T(lo + (hi - lo) * g.uniform()); };
+  for (int i = 0; i < 20000; ++i) {
+    const T scale = std::pow(T(10), u(-3, 3));
+    sphere_t<T> s{vec3_t<T>(u(-1, 1), u(-1, 1), u(-1, 1)) * scale, u(0.01, 1) * scale};
+    if (i % 97 == 0) s.radius = -s.radius;  // invalid: never hit
+    const vec3_t<T> dir = normalize_or_zero(vec3_t<T>(u(-1, 1), u(-1, 1), u(-1, 1)));
+    vec3_t<T> o = s.center + dir * (s.radius * u(0, 3));  // inside or outside
+    if (i % 5 == 0) o = s.center + dir * s.radius;        // on it (up to rounding)
+    vec3_t<T> d(u(-1, 1), u(-1, 1), u(-1, 1));
+    if (i % 101 == 0) d = vec3_t<T>(std::numeric_limits<T>::quiet_NaN(), 0, 1);
+    const ray_t<T> r(o, d);
+    const T t_max = i % 3 == 0 ? infinity<T> : u(0, 4) * scale;
+    hit_t<T> h;
+    CHECK(occludes(s, r, T(0), t_max) == intersect(s, r, T(0), t_max, h));
+  }
+}
