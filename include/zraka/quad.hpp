@@ -49,14 +49,16 @@ template <class T> struct quad_plane_t {
 };
 
 // Where a ray meets the quad with t in (t_min, t_max): t and the plane coordinates (a, b), or
-// none. pl is quad_plane_t(q).
+// none. pl is quad_plane_t(q). Inlined by force: GCC called it and passed the optional back
+// through memory; inlined (with sphere_root), a path tracer's sample is 3-4 % cheaper
+// (time_to_error, mis in float, one thread).
 template <class T> struct quad_root_t {
   T t, a, b;
 };
 
 // [listing quad-intersect]
 template <class T>
-std::optional<quad_root_t<T>> quad_root(const parallelogram_t<T>& q, const quad_plane_t<T>& pl, const ray_t<T>& r,
+ZRAKA_FORCE_INLINE std::optional<quad_root_t<T>> quad_root(const parallelogram_t<T>& q, const quad_plane_t<T>& pl, const ray_t<T>& r,
                                         T t_min, T t_max) {
   const vec3_t<T>& N = pl.N;
   const vec3_t<T> D = r.direction;

@@ -36,7 +36,8 @@ template <class T> struct sphere_t {
 using sphere = sphere_t<double>;
 
 // The root a ray meets first in the open interval (t_min, t_max); `entering` when it is the
-// smaller of the two (the ray enters the sphere there).
+// smaller of the two (the ray enters the sphere there). Inlined by force, as quad.hpp's
+// quad_root and for the same reason.
 template <class T> struct sphere_root_t {
   T t;
   bool entering;
@@ -44,7 +45,7 @@ template <class T> struct sphere_root_t {
 
 // [listing sphere-intersect]
 template <class T>
-std::optional<sphere_root_t<T>> sphere_root(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max) {
+ZRAKA_FORCE_INLINE std::optional<sphere_root_t<T>> sphere_root(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max) {
   if (!s.valid()) return std::nullopt;
   const vec3_t<T> f = r.origin - s.center;
   const vec3_t<T> D = r.direction;

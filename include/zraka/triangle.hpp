@@ -179,12 +179,7 @@ template <class T> struct watertight_ray {
 // [end]
 
 // The mesh BVH runs this once per triangle of a leaf: GCC would rather call it, which costs
-// the BVH about a tenth of its speed, so it is inlined by force where the compiler knows how.
-#if defined(__GNUC__)
-#define ZRAKA_FORCE_INLINE [[gnu::always_inline]] inline
-#else
-#define ZRAKA_FORCE_INLINE inline
-#endif
+// the BVH about a tenth of its speed, so it is inlined by force (ZRAKA_FORCE_INLINE, vec.hpp).
 
 // [listing watertight]
 // True when the ray passes inside the triangle ABC (edges inclusive) and does not see it

@@ -8,6 +8,14 @@
 #include <cmath>
 #include <limits>
 
+// Inlined by force where the compiler knows how: for the few small routines that run per ray
+// and that GCC would rather call (triangle.hpp, quad.hpp, sphere.hpp say what each call cost).
+#if defined(__GNUC__)
+#define ZRAKA_FORCE_INLINE [[gnu::always_inline]] inline
+#else
+#define ZRAKA_FORCE_INLINE inline
+#endif
+
 namespace zraka {
 
 template <class T> using vec2_t = glm::vec<2, T, glm::defaultp>;
