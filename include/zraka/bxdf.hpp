@@ -168,10 +168,9 @@ template <class T> struct lambert_phong_brdf_t {
   }
   T pdf(const vec3_t<T>& wi, const vec3_t<T>& wo, const vec3_t<T>& n) const {
     if (!same_hemisphere(wi, wo, n)) return T(0);
-    if (glossy.rho_s == vec3_t<T>(0)) {  // the mixture's b alone: cos / pi, its frame's z being n
-      const T cos_i = glm::dot(wi, n);
-      return cos_i > T(0) ? cos_i / pi<T> : T(0);
-    }
+    // Lambert's own density: both directions are above, so it is the mixture's cos / pi (whose
+    // frame's z axis is n) without building that frame.
+    if (glossy.rho_s == vec3_t<T>(0)) return diffuse.pdf(wi, wo, n);
     return density(wo, n).pdf(wi);
   }
   std::optional<brdf_sample_t<T>> sample(const vec3_t<T>& wo, const vec3_t<T>& n,
