@@ -661,3 +661,38 @@ TEST_CASE_TEMPLATE("certainty of t > 0: the extreme cases", T, float, double) {
   const triangle_t<T> small{{0, 0, 0}, {s, 0, 0}, {0, s, 0}};
   CHECK(intersect_watertight(small, ray_t<T>({s / 4, s / 4, T(1e3)}, {0, 0, -1}), T(0), infinity<T>, h));
 }
+
+// The watertight test's per-ray half chooses its axes by arithmetic, not branches (triangle.hpp):
+// on every combination of special components, z is an axis of largest |D| (the first such in
+// the order the rule x > y, x > z, y > z picks), (kx, ky, kz) is a permutation, an even one
+// exactly when D[kz] is not negative (the winding kept), and the shear is D's own quotients.
+TEST_CASE_TEMPLATE("the watertight ray's axes and shear, on special direction components", T, float, double) {
+  const T big = std::numeric_limits<T>::max(), tiny = std::numeric_limits<T>::denorm_min();
+  const T values[] = {T(0), -T(0), T(1), T(-1), T(0.5), T(-3), tiny, -tiny, big, -big,
+                      infinity<T>, -infinity<T>, std::numeric_limits<T>::quiet_NaN()};
+  int checked = 0;
+  for (const T x : values)
+    for (const T y : values)
+      for (const T z : values) {
+        ray_t<T> r(vec3_t<T>(1, 2, 3), vec3_t<T>(1, 0, 0));
+        r.direction = vec3_t<T>(x, y, z);  // set after the constructor, which refuses some
+        const detail::watertight_ray<T> w(r);
+        const T d[3] = {x, y, z};
+        const T ax = std::abs(x), ay = std::abs(y), az = std::abs(z);
+        const int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+        REQUIRE(w.kz == kz);
+        REQUIRE(w.kx + w.ky + w.kz == 3);
+        REQUIRE(w.kx != w.ky);
+        const bool even = w.kx == (w.kz + 1) % 3;
+        REQUIRE(even == !(d[kz] < T(0)));
+        const auto same = [](T a, T b) { return (std::isnan(a) && std::isnan(b)) || a == b; };
+        REQUIRE(same(w.sx, d[w.kx] / d[kz]));
+        REQUIRE(same(w.sy, d[w.ky] / d[kz]));
+        REQUIRE(same(w.sz, T(1) / d[kz]));
+        REQUIRE(w.ox == T(1 + w.kx));
+        REQUIRE(w.oy == T(1 + w.ky));
+        REQUIRE(w.oz == T(1 + w.kz));
+        ++checked;
+      }
+  CHECK(checked == 13 * 13 * 13);
+}

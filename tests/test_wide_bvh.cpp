@@ -16,6 +16,7 @@
 #include <doctest/doctest.h>
 
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -387,4 +388,52 @@ TEST_CASE("a traversal allocates nothing") {
   }
   CHECK(allocations.load() == before);
   CHECK(hits > 100);
+}
+
+// The ray's preparation for the four-box test works without branches (wide_bvh.hpp); on every
+// combination of special components it keeps its contract: valid for a finite origin and a
+// non-zero direction without NaN; exact when each non-zero component's reciprocal is in float's
+// normal range; the near row by the sign bit; the origin rounded so that each slab only grows
+// (a float origin as it is).
+TEST_CASE_TEMPLATE("the box test's ray setup, on special components", T, float, double) {
+  const T big = std::numeric_limits<T>::max(), tiny = std::numeric_limits<T>::denorm_min();
+  const T nan = std::numeric_limits<T>::quiet_NaN();
+  const T values[] = {T(0), -T(0), T(1), T(-1), T(0.1), T(-3), tiny, -tiny, big, -big, T(1e-39), infinity<T>,
+                      -infinity<T>, nan};
+  int checked = 0;
+  for (const T x : values)
+    for (const T y : values)
+      for (const T z : values)
+        for (const T o : {T(0.1), T(-0), big, nan}) {
+          ray_t<T> r(vec3_t<T>(o, T(2), T(-0.3)), vec3_t<T>(1, 0, 0));
+          r.direction = vec3_t<T>(x, y, z);  // set after the constructor, which refuses some
+          const box4_ray b(r);
+          const T d[3] = {x, y, z};
+          const T origin[3] = {o, T(2), T(-0.3)};
+          const bool any_nan = std::isnan(x) || std::isnan(y) || std::isnan(z);
+          const bool nonzero = x != T(0) || y != T(0) || z != T(0);
+          REQUIRE(b.valid == (std::isfinite(o) && nonzero && !any_nan));
+          bool exact = true;
+          for (int a = 0; a < 3; ++a) {
+            const T inv = std::abs(T(1) / d[a]);
+            if (d[a] != T(0) && !(inv >= T(std::numeric_limits<float>::min()) &&
+                                  inv <= T(std::numeric_limits<float>::max())))
+              exact = false;
+            const bool negative = std::signbit(d[a]);
+            REQUIRE(b.near_row[a] == (negative ? 3 + a : a));
+            REQUIRE(b.far_row[a] == (negative ? a : 3 + a));
+            REQUIRE(std::bit_cast<std::uint32_t>(b.inv_direction[a]) ==
+                    std::bit_cast<std::uint32_t>(static_cast<float>(T(1) / d[a])));
+            if (std::isnan(origin[a])) continue;
+            // The near plane's t may only fall, the far plane's only rise: the origin moves
+            // towards the far side for the first and towards the near side for the second.
+            const T near_o = T(b.near_origin[a]), far_o = T(b.far_origin[a]);
+            REQUIRE((negative ? near_o <= origin[a] : near_o >= origin[a]));
+            REQUIRE((negative ? far_o >= origin[a] : far_o <= origin[a]));
+            if (std::is_same_v<T, float>) REQUIRE((near_o == origin[a] && far_o == origin[a]));
+          }
+          REQUIRE(b.exact == exact);
+          ++checked;
+        }
+  CHECK(checked == 14 * 14 * 14 * 4);
 }

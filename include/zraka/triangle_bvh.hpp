@@ -58,10 +58,9 @@ struct bvh_ray {
   vec3_t<float> origin, direction;
   box4_ray box;
   detail::watertight_ray<float> shear;
-  bool valid;  // as triangle.hpp's can_hit() asks of a ray
+  bool valid;  // as triangle.hpp's can_hit() asks of a ray: box.valid and a finite direction
   explicit bvh_ray(const ray_t<float>& r)
-      : origin(r.origin), direction(r.direction), box(r), shear(r),
-        valid(r.valid() && is_finite(r.direction)) {}
+      : origin(r.origin), direction(r.direction), box(r), shear(r), valid(box.valid & is_finite(r.direction)) {}
 };
 // [end]
 

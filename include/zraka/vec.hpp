@@ -33,8 +33,8 @@ template <class T> constexpr T infinity = std::numeric_limits<T>::infinity();
 // ||v||^2 without the square root.
 template <class T> T length2(const vec3_t<T>& v) { return glm::dot(v, v); }
 
-template <class T> bool is_finite(const vec3_t<T>& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+template <class T> bool is_finite(const vec3_t<T>& v) {  // & not &&: no branches
+  return std::isfinite(v.x) & std::isfinite(v.y) & std::isfinite(v.z);
 }
 
 template <class T> T max_component(const vec3_t<T>& v) { return std::max({v.x, v.y, v.z}); }

@@ -81,20 +81,32 @@ struct box4_ray {
   bool valid = false;  // a finite origin and a finite, non-zero direction
   bool exact = true;
   template <class T> explicit box4_ray(const ray_t<T>& r) {
-    valid = r.valid() && !(std::isnan(r.direction.x) || std::isnan(r.direction.y) || std::isnan(r.direction.z));
+    // Every test below is a bitwise & or | of comparisons and every choice a select, not a
+    // branch: for incoherent rays the signs of the direction are coin tosses, and mispredicted
+    // branches made this setup a sixth of a small mesh's walk.
+    const T* o = glm::value_ptr(r.origin);
+    const T* d = glm::value_ptr(r.direction);
+    bool finite = true, nonzero = false, in_range = true;
     for (int a = 0; a < 3; ++a) {
-      const T d = r.direction[a];
-      const bool negative = std::signbit(d);
-      near_row[a] = negative ? 3 + a : a;
-      far_row[a] = negative ? a : 3 + a;
-      const T inv = T(1) / d;
+      const int negative = std::signbit(d[a]);
+      near_row[a] = a + 3 * negative;
+      far_row[a] = a + 3 - 3 * negative;
+      const T inv = T(1) / d[a];
       inv_direction[a] = static_cast<float>(inv);
-      if (d != T(0) && !(std::abs(inv) >= T(std::numeric_limits<float>::min()) &&
-                         std::abs(inv) <= T(std::numeric_limits<float>::max())))
-        exact = false;
-      near_origin[a] = negative ? float_down(r.origin[a]) : float_up(r.origin[a]);
-      far_origin[a] = negative ? float_up(r.origin[a]) : float_down(r.origin[a]);
+      finite = finite & std::isfinite(o[a]) & !std::isnan(d[a]);
+      nonzero = nonzero | (d[a] != T(0));
+      in_range = in_range & ((d[a] == T(0)) | ((std::abs(inv) >= T(std::numeric_limits<float>::min())) &
+                                               (std::abs(inv) <= T(std::numeric_limits<float>::max()))));
+      if constexpr (std::is_same_v<T, float>) {  // already float: nothing to round
+        near_origin[a] = far_origin[a] = o[a];
+      } else {
+        const float down = float_down(o[a]), up = float_up(o[a]);
+        near_origin[a] = negative ? down : up;
+        far_origin[a] = negative ? up : down;
+      }
     }
+    valid = finite & nonzero;
+    exact = in_range;
   }
 };
 // [end]
