@@ -16,12 +16,15 @@
 #include <zraka/bvh.hpp>
 #include <zraka/error.hpp>
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
