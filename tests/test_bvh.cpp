@@ -2,7 +2,8 @@
 // same primitive, same barycentrics) for nearest-hit and any-hit, on random triangle soups,
 // random sphere sets, the tessellated teapot and the objects of a scene; plus the edge cases:
 // rays from inside, rays along the axes, no primitives, one primitive, identical centroids,
-// a depth-provoking input, NaN rays and primitives, bad options.
+// a depth-provoking input, NaN rays and primitives, bad options; and the float builder's
+// vector binning against its plain pass.
 #include <zraka/bpt.hpp>
 #include <zraka/bvh.hpp>
 #include <zraka/resources.hpp>
@@ -453,4 +454,44 @@ TEST_CASE("leaf_block: leaves priced by blocks fill their blocks, and still equa
   bvh_build_options one_block = by_triangle;
   one_block.leaf_block = 16;
   check_structure(bvh_of(tris, one_block), tris.size(), 16);
+}
+
+TEST_CASE("vector binning builds the same float tree as the plain pass") {
+  // bin_four_wide grows each bin's bounds four lanes at a time; the tree must not move. Boxes of
+  // every kind: the teapot's triangles, flat and point boxes, one repeated centroid, and sizes
+  // from 1e-30 to 1e30 far from the origin.
+  const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
+  const mesh m = tessellate(patches, 8);
+  std::vector<aabb_t<float>> boxes;
+  for (std::size_t i = 0; i < m.triangle_count(); ++i) {
+    const aabb b = box_of(m.triangle(i));
+    boxes.push_back({vec3_t<float>(b.lo), vec3_t<float>(b.hi)});
+  }
+  rng g(77);
+  for (int i = 0; i < 3000; ++i) {
+    const float size = std::ldexp(1.0f, int(g.uniform() * 200) - 100);
+    const vec3_t<float> c = vec3_t<float>(float(1e6 * (g.uniform() - 0.5)), float(g.uniform()), 0.0f);
+    vec3_t<float> e(size * float(g.uniform()), size * float(g.uniform()), size * float(g.uniform()));
+    if (i % 7 == 0) e.y = 0;                // flat
+    if (i % 11 == 0) e = vec3_t<float>(0);  // a point
+    boxes.push_back({c - e, c + e});
+  }
+  for (int i = 0; i < 100; ++i) boxes.push_back({vec3_t<float>(-1.0f * float(i)), vec3_t<float>(float(i))});
+  for (const int bins : {2, 16, 64}) {
+    bvh_build_options vec, plain;
+    vec.bins = plain.bins = bins;
+    plain.vector_binning = false;
+    const bvh_t<float> a = build_bvh(boxes, vec), b = build_bvh(boxes, plain);
+    CAPTURE(bins);
+    CHECK(a.order == b.order);
+    CHECK(a.depth == b.depth);
+    REQUIRE(a.nodes.size() == b.nodes.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+      const auto &x = a.nodes[i], &y = b.nodes[i];
+      differ += !(x.box.lo == y.box.lo && x.box.hi == y.box.hi && x.index == y.index &&
+                  x.count == y.count && x.axis == y.axis);
+    }
+    CHECK(differ == 0);
+  }
 }
