@@ -313,8 +313,10 @@ bool wide_nearest(const std::vector<bvh_node4>& nodes, const box4_ray& r, float 
           e = {n.child[k], n.count[k], t[k]};
           continue;
         }
-        if (std::popcount(mask) == 2) {  // two: the farther onto the stack, on to the nearer
-          const int k0 = std::countr_zero(mask), k1 = std::countr_zero(mask & (mask - 1));
+        // Two: the farther onto the stack, on to the nearer. (Two bits: one left once the lowest
+        // is cleared. std::popcount is a library call on plain x86-64.)
+        if (const unsigned rest = mask & (mask - 1); rest != 0 && (rest & (rest - 1)) == 0) {
+          const int k0 = std::countr_zero(mask), k1 = std::countr_zero(rest);
           const bool swap = t[k1] < t[k0];
           const int k_near = swap ? k1 : k0, k_far = swap ? k0 : k1;
           stack[std::size_t(top++)] = {n.child[k_far], n.count[k_far], t[k_far]};
