@@ -457,9 +457,9 @@ TEST_CASE("leaf_block: leaves priced by blocks fill their blocks, and still equa
 }
 
 TEST_CASE("vector binning builds the same float tree as the plain pass") {
-  // bin_four_wide grows each bin's bounds four lanes at a time; the tree must not move. Boxes of
-  // every kind: the teapot's triangles, flat and point boxes, one repeated centroid, and sizes
-  // from 1e-30 to 1e30 far from the origin.
+  // bin_primitives<true> grows each bin's bounds four lanes at a time; the tree must not move.
+  // Boxes of every kind: the teapot's triangles, flat and point boxes, one repeated centroid,
+  // and sizes from 1e-30 to 1e30 far from the origin.
   const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
   const mesh m = tessellate(patches, 8);
   std::vector<aabb_t<float>> boxes;

@@ -122,54 +122,78 @@ template <class T> class bvh_builder {
     return T((n + b - 1) / b);
   }
 
+  // A box's lo and hi, each in one four-lane register (the fourth lane unused): in the vector
+  // binning a bin grows by one min and one max instead of six, and the chain of updates of one
+  // bin through memory is shorter. The bins' boxes are the same numbers (up to the sign of a
+  // zero, which no area sees), so the tree is the same.
 #if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
   static constexpr bool four_wide_bins = std::is_same_v<T, float>;
+  struct box_lanes {
+    __m128 lo = _mm_set1_ps(infinity<float>), hi = _mm_set1_ps(-infinity<float>);
+    void grow(const box_lanes& b) {
+      lo = _mm_min_ps(lo, b.lo);
+      hi = _mm_max_ps(hi, b.hi);
+    }
+  };
+  static box_lanes lanes_of(const aabb_t<T>& box) {
+    static_assert(sizeof(aabb_t<float>) == 24 && offsetof(aabb_t<float>, hi) == 12);
+    const float* p = reinterpret_cast<const float*>(&box);  // lo.x lo.y lo.z hi.x hi.y hi.z
+    const __m128 hi = _mm_loadu_ps(p + 2);                   // (lo.z) hi.x hi.y hi.z
+    return {_mm_loadu_ps(p), _mm_shuffle_ps(hi, hi, _MM_SHUFFLE(3, 3, 2, 1))};
+  }
+  static aabb_t<T> box_of(const box_lanes& b) {
+    alignas(16) float lo[4], hi[4];
+    _mm_store_ps(lo, b.lo);
+    _mm_store_ps(hi, b.hi);
+    return {vec3_t<T>(lo[0], lo[1], lo[2]), vec3_t<T>(hi[0], hi[1], hi[2])};
+  }
 #else
   static constexpr bool four_wide_bins = false;
-#endif
-  // best_sah_split's binning pass in float, each bin's lo and hi held in four lanes (the fourth
-  // unused) while the pass runs: a bin grows by one min and one max instead of six, and the
-  // chain of updates of one bin through memory is shorter. The bins' boxes are the same numbers
-  // (up to the sign of a zero, which no area sees), so the tree is the same.
-  void bin_four_wide([[maybe_unused]] std::uint32_t first, [[maybe_unused]] std::uint32_t last,
-                     [[maybe_unused]] const aabb_t<T>& cbox, [[maybe_unused]] const vec3_t<T>& scale,
-                     [[maybe_unused]] int (&lo_bin)[3], [[maybe_unused]] int (&hi_bin)[3]) {
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
-    if constexpr (four_wide_bins) {
-      const int nb = opt_.bins;
-      std::vector<bin_box4>& box = bins4_;
-      std::fill(box.begin(), box.end(), bin_box4{_mm_set1_ps(infinity<float>), _mm_set1_ps(-infinity<float>)});
-      for (std::uint32_t k = first; k < last; ++k) {
-        const std::uint32_t i = out_.order[k];
-        static_assert(sizeof(aabb_t<float>) == 24 && offsetof(aabb_t<float>, hi) == 12);
-        const float* p = reinterpret_cast<const float*>(&boxes_[i]);  // lo.x lo.y lo.z hi.x hi.y hi.z
-        const __m128 lo = _mm_loadu_ps(p);               // lo.x lo.y lo.z (hi.x)
-        const __m128 hi = _mm_loadu_ps(p + 2);           // (lo.z) hi.x hi.y hi.z
-        const __m128 hi_xyz = _mm_shuffle_ps(hi, hi, _MM_SHUFFLE(3, 3, 2, 1));
-        for (int a = 0; a < 3; ++a) {
-          if (scale[a] == T(0)) continue;
-          const int j = bin_of(centroids_[i][a], cbox.lo[a], scale[a], nb);
-          lo_bin[a] = std::min(lo_bin[a], j);
-          hi_bin[a] = std::max(hi_bin[a], j);
-          const std::size_t b = std::size_t(a * nb + j);
-          box[b].lo = _mm_min_ps(box[b].lo, lo);
-          box[b].hi = _mm_max_ps(box[b].hi, hi_xyz);
-          ++bins_[b].count;
-        }
-      }
-      for (std::size_t b = 0; b < bins_.size(); ++b) {
-        if (bins_[b].count == 0) continue;  // an empty bin keeps its empty box
-        alignas(16) float l[4], h[4];
-        _mm_store_ps(l, box[b].lo);
-        _mm_store_ps(h, box[b].hi);
-        bins_[b].box.lo = vec3_t<T>(l[0], l[1], l[2]);
-        bins_[b].box.hi = vec3_t<T>(h[0], h[1], h[2]);
-      }
+  struct box_lanes {  // without SSE: never used (four_wide_bins is false), kept so the code compiles
+    aabb_t<T> box;
+    void grow(const box_lanes& b) {
+      box.lo = glm::min(box.lo, b.box.lo);
+      box.hi = glm::max(box.hi, b.box.hi);
     }
+  };
+  static box_lanes lanes_of(const aabb_t<T>& box) { return {box}; }
+  static aabb_t<T> box_of(const box_lanes& b) { return b.box; }
 #endif
-  }
 
   // [listing sah]
+  // One pass bins every primitive of [first, last) on all three axes: each box is read once,
+  // not three times (a third faster build of a million triangles), and each axis notes the
+  // lowest and highest bin it filled. Vector: the float pass in four lanes (box_lanes, above).
+  template <bool Vector>
+  void bin_primitives(std::uint32_t first, std::uint32_t last, const aabb_t<T>& cbox, const vec3_t<T>& scale,
+                      int (&lo_bin)[3], int (&hi_bin)[3]) {
+    const int nb = opt_.bins;
+    if constexpr (Vector) std::fill(bins4_.begin(), bins4_.end(), box_lanes{});
+    for (std::uint32_t k = first; k < last; ++k) {
+      const std::uint32_t i = out_.order[k];
+      const aabb_t<T>& box = boxes_[i];  // never empty: run() left those out
+      [[maybe_unused]] box_lanes lanes;
+      if constexpr (Vector) lanes = lanes_of(box);
+      for (int a = 0; a < 3; ++a) {
+        if (scale[a] == T(0)) continue;
+        const int j = bin_of(centroids_[i][a], cbox.lo[a], scale[a], nb);
+        lo_bin[a] = std::min(lo_bin[a], j);
+        hi_bin[a] = std::max(hi_bin[a], j);
+        bin& b = bins_[std::size_t(a * nb + j)];
+        if constexpr (Vector) {
+          bins4_[std::size_t(a * nb + j)].grow(lanes);
+        } else {
+          b.box.lo = glm::min(b.box.lo, box.lo);
+          b.box.hi = glm::max(b.box.hi, box.hi);
+        }
+        ++b.count;
+      }
+    }
+    if constexpr (Vector)
+      for (std::size_t b = 0; b < bins_.size(); ++b)
+        if (bins_[b].count != 0) bins_[b].box = box_of(bins4_[b]);  // an empty bin keeps its empty box
+  }
+
   // The SAH cost of splitting [first, last) at a bin border, in units of one primitive test:
   // C_trav + (A_L N_L + A_R N_R) / A, with A the parent's area. A ray that hits the parent hits
   // a child with probability A_child / A (for uniformly distributed rays), so this is the
@@ -194,24 +218,8 @@ template <class T> class bvh_builder {
     // The bins used on each axis lie in [lo_bin, hi_bin]; borders outside it leave one side
     // empty, so the sweeps below skip them (a small node fills few of its bins).
     int lo_bin[3] = {nb, nb, nb}, hi_bin[3] = {-1, -1, -1};
-    // One pass bins every primitive on all three axes: each box is read once, not three times
-    // (a third faster build of a million triangles). In float with SSE the same pass grows
-    // a bin's lo and hi with one instruction each (bin_four_wide, below).
-    if (four_wide_bins && opt_.vector_binning) bin_four_wide(first, last, cbox, scale, lo_bin, hi_bin);
-    else for (std::uint32_t k = first; k < last; ++k) {
-      const std::uint32_t i = out_.order[k];
-      const aabb_t<T>& box = boxes_[i];  // never empty: run() left those out
-      for (int a = 0; a < 3; ++a) {
-        if (scale[a] == T(0)) continue;
-        const int j = bin_of(centroids_[i][a], cbox.lo[a], scale[a], nb);
-        lo_bin[a] = std::min(lo_bin[a], j);
-        hi_bin[a] = std::max(hi_bin[a], j);
-        bin& b = bins[std::size_t(a * nb + j)];
-        b.box.lo = glm::min(b.box.lo, box.lo);
-        b.box.hi = glm::max(b.box.hi, box.hi);
-        ++b.count;
-      }
-    }
+    if (four_wide_bins && opt_.vector_binning) bin_primitives<four_wide_bins>(first, last, cbox, scale, lo_bin, hi_bin);
+    else bin_primitives<false>(first, last, cbox, scale, lo_bin, hi_bin);
     for (int a = 0; a < 3; ++a) {
       if (scale[a] == T(0)) continue;
       const bin* axis_bins = &bins[std::size_t(a * nb)];
@@ -295,12 +303,7 @@ template <class T> class bvh_builder {
   const bvh_build_options& opt_;
   bvh_t<T>& out_;
   std::vector<bin> bins_;  // scratch for best_sah_split, allocated once
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
-  struct bin_box4 {  // a bin's box in four lanes
-    __m128 lo, hi;
-  };
-  std::vector<bin_box4> bins4_ = std::vector<bin_box4>(four_wide_bins ? bins_.size() : 0);  // bin_four_wide's
-#endif
+  std::vector<box_lanes> bins4_ = std::vector<box_lanes>(four_wide_bins ? bins_.size() : 0);  // bin_primitives<true>'s
   std::vector<T> right_area_;
   std::vector<std::uint32_t> right_count_;
 };
