@@ -8,6 +8,10 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -50,6 +54,34 @@ TEST_CASE("image_io: the sRGB transfer function at known points") {
   CHECK(to_byte(0.2159f) == 128);    // mid grey in sRGB is only 21.6 % linear light
   // Round trip through 8 bits: every byte decodes and re-encodes to itself.
   for (int b = 0; b < 256; ++b) CHECK(to_byte(srgb_to_linear(b / 255.0f)) == b);
+}
+
+TEST_CASE("image_io: to_byte is the count of srgb_byte_steps at or below a value (the kernel's display)") {
+  const std::array<float, 256> steps = srgb_byte_steps();
+  auto steps_at_or_below = [&](float x) {  // NaN compares false: 0 steps, like to_byte(NaN)
+    return int(std::count_if(steps.begin() + 1, steps.end(), [&](float s) { return x >= s; }));
+  };
+  for (int b = 1; b < 256; ++b) {  // each step is where to_byte moves from b - 1 to b
+    CAPTURE(b);
+    CHECK(to_byte(steps[std::size_t(b)]) == b);
+    CHECK(to_byte(std::nextafter(steps[std::size_t(b)], 0.0f)) == b - 1);
+    if (b > 1) CHECK(steps[std::size_t(b)] > steps[std::size_t(b) - 1]);
+    // Around every step, float by float.
+    float x = steps[std::size_t(b)];
+    for (int k = 0; k < 64; ++k) x = std::nextafter(x, 0.0f);
+    for (int k = 0; k < 128; ++k, x = std::nextafter(x, 2.0f)) REQUIRE(steps_at_or_below(x) == int(to_byte(x)));
+  }
+  // One float in 4096 of [0, 1], and the extremes.
+  for (std::uint32_t bits = 0; bits <= std::bit_cast<std::uint32_t>(1.0f); bits += 4096) {
+    const float x = std::bit_cast<float>(bits);
+    REQUIRE(steps_at_or_below(x) == int(to_byte(x)));
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  for (const float x : {nan_f, -nan_f, -inf, -1.0f, -0.0f, 0.0f, 0x1p-149f, std::numeric_limits<float>::min(), 1.0f,
+                        std::nextafter(1.0f, 2.0f), 7.5f, std::numeric_limits<float>::max(), inf}) {
+    CAPTURE(x);
+    CHECK(steps_at_or_below(x) == int(to_byte(x)));
+  }
 }
 
 TEST_CASE("image_io: PPM P3 text is exact for a tiny image") {

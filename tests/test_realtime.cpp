@@ -10,6 +10,7 @@
 #include <zraka/cornell.hpp>
 #include <zraka/environment.hpp>
 #include <zraka/gpu_scene.hpp>
+#include <zraka/image_io.hpp>
 #include <zraka/realtime.hpp>
 #include <zraka/render.hpp>
 #include <zraka/resources.hpp>
@@ -701,6 +702,35 @@ TEST_CASE("progressive accumulation: 4 launches of 8 spp are one launch of 32") 
   a.reset();  // a restart gives the first frame again
   a.launch(32);
   CHECK(a.read_image().at(5, 7) == ib.at(5, 7));
+}
+
+TEST_CASE("the display is image_io's to_byte of the running mean, byte for byte") {
+  auto ctx = device();
+  if (!ctx) return;
+  int lit = 0, clamped = 0;
+  for (const scene& sc : {spheres_scene(), realtime_scene("cornell")}) {  // the Cornell box's light: > 1
+    const gpu_scene g = pack_scene(sc, 48, 32, method(integrator::mis, 8));
+    gpu_renderer r(*ctx, g, 48, 32, 9);
+    std::vector<std::uint8_t> bytes;
+    for (const int n : {1, 3}) {  // after 1 sample and after 4
+      r.launch(std::uint32_t(n));
+      r.read_display(bytes);
+      const image mean = r.read_image();  // top row first; the display is bottom row first
+      for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 48; ++x)
+          for (int c = 0; c < 3; ++c) {
+            const std::uint8_t want = to_byte(mean.at(x, y)[c]);
+            const std::uint8_t got = bytes[4 * (std::size_t(31 - y) * 48 + std::size_t(x)) + std::size_t(c)];
+            CAPTURE(x);
+            CAPTURE(y);
+            REQUIRE(int(got) == int(want));
+            lit += want > 0 && want < 255;
+            clamped += mean.at(x, y)[c] > 1.0f;
+          }
+    }
+  }
+  CHECK(lit > 1000);   // the test saw the curve, not only black
+  CHECK(clamped > 0);  // and a light, brighter than white
 }
 
 TEST_CASE("specialised and all-features kernels compute the same image (spheres, textures, a sky map)") {

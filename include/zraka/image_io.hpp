@@ -11,6 +11,7 @@
 #include <zraka/input_file.hpp>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <charconv>
 #include <cctype>
@@ -55,6 +56,27 @@ inline float srgb_to_linear(float s) {
 inline std::uint8_t to_byte(float linear) {
   return static_cast<std::uint8_t>(std::lround(linear_to_srgb(linear) * 255.0f));
 }
+
+// [listing srgb-steps]
+// to_byte's 255 steps: steps[b] (b = 1..255) is the smallest float that to_byte makes b or
+// more; steps[0] is 0 and never read. to_byte(x) is then the number of steps at or below x, found
+// with eight comparisons: how the real-time kernel encodes its display, giving to_byte's bytes
+// without a pow per channel (PoCL's pow was two fifths of a one-sample frame). Each step is found
+// by bisecting the bit patterns of the floats in [0, 1], which are in the order of their values,
+// with to_byte itself as the judge, so it holds wherever to_byte is monotone.
+inline std::array<float, 256> srgb_byte_steps() {
+  std::array<float, 256> steps{};
+  for (int b = 1; b < 256; ++b) {
+    std::uint32_t lo = 0, hi = std::bit_cast<std::uint32_t>(1.0f);  // to_byte(lo) < b <= to_byte(hi)
+    while (hi - lo > 1) {
+      const std::uint32_t mid = lo + (hi - lo) / 2;
+      (to_byte(std::bit_cast<float>(mid)) >= b ? hi : lo) = mid;
+    }
+    steps[std::size_t(b)] = std::bit_cast<float>(hi);
+  }
+  return steps;
+}
+// [end]
 
 namespace detail {
 // What every image reader checks, with the file's name in front of the message: the size the

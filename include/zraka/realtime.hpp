@@ -16,10 +16,12 @@
 #include <zraka/error.hpp>
 #include <zraka/gpu_scene.hpp>
 #include <zraka/image.hpp>
+#include <zraka/image_io.hpp>
 #include <zraka/scene.hpp>
 #include <zraka/stopwatch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -100,7 +102,7 @@ class gpu_renderer {
   cl::program_handle program_;
   cl::kernel_handle kernel_;
   cl::buffer spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, light_tris_, camera_, accum_,
-      accum_sq_, display_, textures_, texels_, tri_uvs_, env_, env_tables_, noise_;
+      accum_sq_, display_, textures_, texels_, tri_uvs_, env_, env_tables_, noise_, srgb_steps_;
   std::uint32_t samples_ = 0;
   using event_handle = cl::handle<cl_event, clReleaseEvent>;
   event_handle pending_;
@@ -133,6 +135,8 @@ ZRAKA_OPENCL_FN gpu_renderer::gpu_renderer(const cl::context& c, const gpu_scene
   env_ = c.make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_environment), &s.environment);
   env_tables_ = upload(s.env_tables);
   noise_ = upload(s.noise_permutation);
+  const std::array<float, 256> steps = srgb_byte_steps();  // the display's encoding (image_io.hpp)
+  srgb_steps_ = c.make_buffer(CL_MEM_READ_ONLY, sizeof steps, steps.data());
   camera_ = c.make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_camera), &s.camera);
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
   accum_ = c.make_buffer(CL_MEM_READ_WRITE, pixels * 16);
@@ -152,7 +156,7 @@ ZRAKA_OPENCL_FN void gpu_renderer::launch(std::uint32_t n) {
                cl_int(s.planes.size()), cl_int(s.lights.size()), cl_int(s.nodes.size()),
                cl_uint(width_), cl_uint(height_), cl_uint(samples_), cl_uint(n),
                cl_ulong(seed_), bg, textures_, texels_, tri_uvs_, cl_int(s.triangle_uvs.empty() ? 0 : 1), env_,
-               env_tables_, noise_);
+               env_tables_, noise_, srgb_steps_);
   cl::run_2d(ctx_, kernel_, std::size_t(width_), std::size_t(height_));
   samples_ += n;
 }
