@@ -54,7 +54,7 @@
 // [listing cl-structs]
 // light: the object's index in the light table, or -1 (not a sampled light)
 typedef struct { float4 center_radius; int material, light, p1, p2; } sphere_t;
-typedef struct { float4 corner, u, v, normal_area; int material, light, p1, p2; } quad_t;
+typedef struct { float4 corner, u, v, normal_area, w; int material, light, p1, p2; } quad_t;
 typedef struct { float4 point, normal; int material, p0, p1, p2; } plane_t;
 typedef struct { float4 a, b, c; uint id; int material, light, p1; } triangle_t;
 typedef struct { float box[6][4]; uint child[4], count[4]; } node4_t;
@@ -259,8 +259,7 @@ bool hit_quad(const quad_t q, float3 o, float3 D, float t_max, hit_t* h) {
   const float s_error = GAMMA(4) * dot(fabs(N), fabs(Q) + fabs(o)) + GAMMA(4) * length(QO);
   if (!(fabs(s) > s_error)) return false;
   const float3 d = (o + t * D) - Q;
-  const float3 n_raw = cross(u, v);
-  const float3 w = n_raw / dot(n_raw, n_raw);
+  const float3 w = q.w.xyz;  // quad.hpp's quad_plane_t::w, computed once by pack_scene
   const float a = dot(w, cross(d, v));
   const float b = dot(w, cross(u, d));
   if (!(a >= 0.0f && a <= 1.0f && b >= 0.0f && b <= 1.0f)) return false;

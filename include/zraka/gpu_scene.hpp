@@ -56,6 +56,7 @@ struct gpu_sphere {
 struct gpu_quad {
   gpu_float4 corner, u, v;
   gpu_float4 normal_area;  // unit normal of u x v; w: area
+  gpu_float4 w;            // quad.hpp's quad_plane_t::w, n / |n|^2 for the plane coordinates
   std::int32_t material, light, pad[2];
 };
 struct gpu_plane {
@@ -124,8 +125,8 @@ struct gpu_camera {          // camera_t::prepared in float
 
 static_assert(sizeof(gpu_float4) == 16 && alignof(gpu_float4) == 16);
 static_assert(sizeof(gpu_sphere) == 32 && offsetof(gpu_sphere, material) == 16 && offsetof(gpu_sphere, light) == 20);
-static_assert(sizeof(gpu_quad) == 80 && offsetof(gpu_quad, normal_area) == 48 &&
-              offsetof(gpu_quad, material) == 64);
+static_assert(sizeof(gpu_quad) == 96 && offsetof(gpu_quad, normal_area) == 48 && offsetof(gpu_quad, w) == 64 &&
+              offsetof(gpu_quad, material) == 80);
 static_assert(sizeof(gpu_plane) == 48 && offsetof(gpu_plane, material) == 32);
 static_assert(sizeof(gpu_triangle) == 64 && offsetof(gpu_triangle, id) == 48 &&
               offsetof(gpu_triangle, material) == 52 && offsetof(gpu_triangle, light) == 56);
@@ -365,7 +366,8 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   for (std::size_t i = 0; i < sc.quads.size(); ++i) {
     const auto& q = sc.quads[i];
     g.quads.push_back({to_gpu(q.shape.corner), to_gpu(q.shape.u), to_gpu(q.shape.v),
-                       to_gpu(q.shape.normal(), q.shape.area()), q.material, light_of(shape_kind::quad, i), {0, 0}});
+                       to_gpu(q.shape.normal(), q.shape.area()), to_gpu(quad_plane_t(q.shape).w), q.material,
+                       light_of(shape_kind::quad, i), {0, 0}});
     note_material(q.material);
   }
   for (const auto& p : sc.planes) {
