@@ -574,7 +574,9 @@ float3 to_local(float3 n, float3 v) {
 
 float3 sample_cosine_hemisphere(float2 u) {
   const float u0 = clamp_unit(u.x), phi = 2.0f * PI_F * clamp_unit(u.y), s = sqrt(u0);
-  return (float3)(s * cos(phi), s * sin(phi), sqrt(1.0f - u0));
+  float cos_phi;
+  const float sin_phi = sincos(phi, &cos_phi);
+  return (float3)(s * cos_phi, s * sin_phi, sqrt(1.0f - u0));
 }
 float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? cos_theta / PI_F : 0.0f; }
 
@@ -591,7 +593,9 @@ float3 cone_axis(float3 d) {
 float3 sample_cone(float2 u, float h_max) {
   const float h = clamp_unit(u.x) * h_max;
   const float s = sqrt(h * (2.0f - h)), phi = 2.0f * PI_F * clamp_unit(u.y);
-  return (float3)(s * cos(phi), s * sin(phi), 1.0f - h);
+  float cos_phi;
+  const float sin_phi = sincos(phi, &cos_phi);
+  return (float3)(s * cos_phi, s * sin_phi, 1.0f - h);
 }
 bool in_cone(float3 w, float h_max) {
   const float len2 = dot(w, w);
