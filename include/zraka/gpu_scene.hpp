@@ -182,6 +182,11 @@ struct gpu_scene {
 template <class T> gpu_float4 to_gpu(const vec3_t<T>& v, double w = 0) {
   return {float(v.x), float(v.y), float(v.z), float(w)};
 }
+// A quad's n / |n|^2 as the CPU's float path has it (scene_in<float>, then quad_plane_t): from
+// the edges rounded to float, so that the kernel's plane coordinates are that path's bits.
+template <class T> vec3_t<float> float_quad_w(const parallelogram_t<T>& q) {
+  return quad_plane_t<float>(parallelogram_t<float>{vec3_t<float>(q.corner), vec3_t<float>(q.u), vec3_t<float>(q.v)}).w;
+}
 inline gpu_float4 to_gpu(const rgb& c, float w = 0) { return {c.x, c.y, c.z, w}; }
 
 namespace detail {
@@ -366,7 +371,7 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   for (std::size_t i = 0; i < sc.quads.size(); ++i) {
     const auto& q = sc.quads[i];
     g.quads.push_back({to_gpu(q.shape.corner), to_gpu(q.shape.u), to_gpu(q.shape.v),
-                       to_gpu(q.shape.normal(), q.shape.area()), to_gpu(quad_plane_t(q.shape).w), q.material,
+                       to_gpu(q.shape.normal(), q.shape.area()), to_gpu(float_quad_w(q.shape)), q.material,
                        light_of(shape_kind::quad, i), {0, 0}});
     note_material(q.material);
   }
