@@ -251,11 +251,11 @@ bool hit_quad(const quad_t q, float3 o, float3 D, float t_max, hit_t* h) {
   const float3 u = q.u.xyz, v = q.v.xyz, Q = q.corner.xyz;
   const float3 N = q.normal_area.xyz;
   const float denom = dot(N, D);
-  if (!(fabs(denom) > GAMMA(3) * dot(fabs(N), fabs(D)))) return false;
   const float3 QO = Q - o;
   const float s = dot(N, QO);
   const float t = s / denom;
-  if (!(t > 0.0f && t < t_max)) return false;  // quad.hpp's order: the cheaper test first
+  if (!(t > 0.0f && t < t_max)) return false;  // quad.hpp's order: the test that rejects most first
+  if (!(fabs(denom) > GAMMA(3) * dot(fabs(N), fabs(D)))) return false;  // parallel (or NaN)
   const float s_error = GAMMA(4) * dot(fabs(N), fabs(Q) + fabs(o)) + GAMMA(4) * length(QO);
   if (!(fabs(s) > s_error)) return false;
   const float3 d = (o + t * D) - Q;

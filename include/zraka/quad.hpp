@@ -63,12 +63,15 @@ ZRAKA_FORCE_INLINE std::optional<quad_root_t<T>> quad_root(const parallelogram_t
   const vec3_t<T>& N = pl.N;
   const vec3_t<T> D = r.direction;
   const T denom = glm::dot(N, D);
-  // Parallel (or NaN): the sign of N.D is lost in its rounding error.
-  if (!(std::abs(denom) > gamma<T>(3) * glm::dot(glm::abs(N), glm::abs(D)))) return std::nullopt;
   const vec3_t<T> QO = q.corner - r.origin;
   const T s = glm::dot(N, QO);  // signed distance from the origin to the plane, along N
   const T t = s / denom;
-  if (!(t > t_min && t < t_max)) return std::nullopt;  // first the cheaper test that rejects most
+  // First the test that rejects most: the plane behind the ray or beyond the nearest hit. (A
+  // parallel ray's t is infinite or NaN, or whatever the rounding of N.D made it: the next test
+  // decides, and the order changes no answer.)
+  if (!(t > t_min && t < t_max)) return std::nullopt;
+  // Parallel (or NaN): the sign of N.D is lost in its rounding error.
+  if (!(std::abs(denom) > gamma<T>(3) * glm::dot(glm::abs(N), glm::abs(D)))) return std::nullopt;
   // The error of s: the subtraction and the dot product round (gamma(4) of the magnitudes), and
   // N is itself a few ulps off perpendicular to u and v (gamma(4) of the distance from Q).
   const T s_error = gamma<T>(4) * glm::dot(glm::abs(N), glm::abs(q.corner) + glm::abs(r.origin)) +
