@@ -182,12 +182,12 @@ struct gpu_scene {
 template <class T> gpu_float4 to_gpu(const vec3_t<T>& v, double w = 0) {
   return {float(v.x), float(v.y), float(v.z), float(w)};
 }
+inline gpu_float4 to_gpu(const rgb& c, float w = 0) { return {c.x, c.y, c.z, w}; }
 // A quad's n / |n|^2 as the CPU's float path has it (scene_in<float>, then quad_plane_t): from
 // the edges rounded to float, so that the kernel's plane coordinates are that path's bits.
 template <class T> vec3_t<float> float_quad_w(const parallelogram_t<T>& q) {
   return quad_plane_t<float>(parallelogram_t<float>{vec3_t<float>(q.corner), vec3_t<float>(q.u), vec3_t<float>(q.v)}).w;
 }
-inline gpu_float4 to_gpu(const rgb& c, float w = 0) { return {c.x, c.y, c.z, w}; }
 
 namespace detail {
 template <class P> gpu_camera camera_to_gpu(const P& c) {
@@ -499,8 +499,8 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   };
   for (std::size_t i = 0; i < g.spheres.size(); ++i) need_finite(g.spheres[i].center_radius, "sphere " + std::to_string(i));
   for (std::size_t i = 0; i < g.quads.size(); ++i)
-    for (const auto& v : {g.quads[i].corner, g.quads[i].u, g.quads[i].v, g.quads[i].normal_area})
-      need_finite(v, "quad " + std::to_string(i));
+    for (const auto& v : {g.quads[i].corner, g.quads[i].u, g.quads[i].v, g.quads[i].normal_area, g.quads[i].w})
+      need_finite(v, "quad " + std::to_string(i));  // w: |n|^2 underflows for edges below ~1e-10
   for (std::size_t i = 0; i < g.planes.size(); ++i) need_finite(g.planes[i].point, "plane " + std::to_string(i));
   for (const auto& t : g.triangles)
     for (const auto& v : {t.a, t.b, t.c}) need_finite(v, "triangle " + std::to_string(t.id));
