@@ -241,8 +241,8 @@ TEST_CASE("what the kernel cannot run is an error naming it: user shapes, custom
   scene far;
   far.add(sphere{{1e300, 0, 0}, 1}, far.add_material(material::lambertian(rgb(0.5f))));
   CHECK_THROWS_WITH_AS(pack_scene(far, 8, 8, depth(4)), doctest::Contains("sphere 0 does not fit in float"), error);
-  scene speck;  // a quad of 1e-12 edges: fine in double; in float |u x v|^2 underflows and n/|n|^2 is inf
-  speck.add(quad{{0, 0, -3}, {1e-12, 0, 0}, {0, 1e-12, 0}}, speck.add_material(material::lambertian(rgb(0.5f))));
+  scene speck;  // a quad of 1e-30 edges: fine in double; in float u x v underflows to 0 and n/|n|^2 is NaN
+  speck.add(quad{{0, 0, -3}, {1e-30, 0, 0}, {0, 1e-30, 0}}, speck.add_material(material::lambertian(rgb(0.5f))));
   CHECK_THROWS_WITH_AS(pack_scene(speck, 8, 8, depth(4)), doctest::Contains("quad 0 does not fit in float"), error);
   scene fog;
   fog.add(sphere{{0, 0, -3}, 1}, fog.add_material(material::lambertian(rgb(0.5f))));

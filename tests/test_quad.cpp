@@ -3,6 +3,9 @@
 
 #include <doctest/doctest.h>
 
+#include <limits>
+#include <vector>
+
 using namespace zraka;
 
 TEST_CASE_TEMPLATE("quad: a ray through the middle hits at the right t, point and uv", T, float, double) {
@@ -35,6 +38,30 @@ TEST_CASE_TEMPLATE("quad: edges and corners are inside, just outside is not", T,
   for (T x : {T(-1e-3), T(1.001)})
     CHECK_FALSE(intersect(q, ray_t<T>({x, T(1), T(0.5)}, {T(0), T(-1), T(0)}), T(0), infinity<T>, h));
   CHECK_FALSE(intersect(q, ray_t<T>({T(0.5), T(1), T(1.001)}, {T(0), T(-1), T(0)}), T(0), infinity<T>, h));
+}
+
+// n / |n|^2 squares the area: for tiny quads it underflows (w = inf: never hit) and for huge
+// ones it overflows (w = 0: every point of the plane inside). Each size here is beyond that range
+// for its precision; the quad is hit where it is and nowhere else.
+TEST_CASE_TEMPLATE("quad: tiny and huge quads are hit where they are, not lost or spread over the plane", T, float, double) {
+  const std::vector<T> sizes = sizeof(T) == 4 ? std::vector<T>{T(1e-12), T(1e-15), T(1e10), T(1e15)}
+                                              : std::vector<T>{T(1e-80), T(1e-120), T(1e80), T(1e120)};
+  for (const T s : sizes) {
+    CAPTURE(s);
+    const parallelogram_t<T> q{{-s / 2, -s / 2, T(0)}, {s, T(0), T(0)}, {T(0), s, T(0)}};
+    REQUIRE(q.valid());
+    const T d = glm::dot(glm::cross(q.u, q.v), glm::cross(q.u, q.v));
+    CHECK_FALSE((d >= std::numeric_limits<T>::min() && d <= std::numeric_limits<T>::max()));  // the case
+    hit_t<T> h;
+    REQUIRE(intersect(q, ray_t<T>({s / 4, T(0), 3 * s}, {T(0), T(0), T(-1)}), T(0), infinity<T>, h));
+    CHECK(h.t == doctest::Approx(3 * s).epsilon(1e-5));
+    CHECK(h.uv.x == doctest::Approx(0.75).epsilon(1e-5));
+    CHECK(h.uv.y == doctest::Approx(0.5).epsilon(1e-5));
+    CHECK(h.p.x == doctest::Approx(s / 4).epsilon(1e-5));
+    CHECK_FALSE(intersect(q, ray_t<T>({s * T(0.6), T(0), 3 * s}, {T(0), T(0), T(-1)}), T(0), infinity<T>, h));
+    CHECK_FALSE(intersect(q, ray_t<T>({T(0), s * T(-0.6), 3 * s}, {T(0), T(0), T(-1)}), T(0), infinity<T>, h));
+    CHECK(occludes(q, ray_t<T>({s / 4, T(0), 3 * s}, {T(0), T(0), T(-1)}), T(0), infinity<T>));
+  }
 }
 
 TEST_CASE_TEMPLATE("quad: parallel, behind, out of range, degenerate and NaN give no hit", T, float, double) {

@@ -500,7 +500,7 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   for (std::size_t i = 0; i < g.spheres.size(); ++i) need_finite(g.spheres[i].center_radius, "sphere " + std::to_string(i));
   for (std::size_t i = 0; i < g.quads.size(); ++i)
     for (const auto& v : {g.quads[i].corner, g.quads[i].u, g.quads[i].v, g.quads[i].normal_area, g.quads[i].w})
-      need_finite(v, "quad " + std::to_string(i));  // w: |n|^2 underflows for edges below ~1e-10
+      need_finite(v, "quad " + std::to_string(i));  // w: NaN where u x v underflows in float (edges ~1e-20)
   for (std::size_t i = 0; i < g.planes.size(); ++i) need_finite(g.planes[i].point, "plane " + std::to_string(i));
   for (const auto& t : g.triangles)
     for (const auto& v : {t.a, t.b, t.c}) need_finite(v, "triangle " + std::to_string(t.id));

@@ -17,6 +17,8 @@
 #include <zraka/ray.hpp>
 #include <zraka/spawn.hpp>
 
+#include <cmath>
+#include <limits>
 #include <optional>
 
 namespace zraka {
@@ -39,13 +41,27 @@ template <class T> struct parallelogram_t {
 using quad = parallelogram_t<double>;
 using quadf = parallelogram_t<float>;
 
+// n / |n|^2 for the plane coordinates, given n = u x v and its unit N. Where |n|^2 leaves T's
+// normal range (float: edges below ~1e-10 or above ~4e9; double: ~1e-77 and ~1e77) the quotient
+// would be inf or 0, a quad never hit or one as wide as its plane; there w is N / |n|, with |n|
+// found by rescaling n as normalize_or_zero does (vec.hpp), never by squaring it. Inside the
+// range, and for a degenerate quad (n = 0: NaN, never hit), the plain quotient: the same bits as
+// ever.
+template <class T> vec3_t<T> plane_coordinate_vector(const vec3_t<T>& n, const vec3_t<T>& N) {
+  const T d = glm::dot(n, n), m = max_component(glm::abs(n));
+  if ((d >= std::numeric_limits<T>::min() && d <= std::numeric_limits<T>::max()) || !(m > T(0)) || !is_finite(n))
+    return n / d;
+  const vec3_t<T> s = n / m;
+  return N / (m * std::sqrt(glm::dot(s, s)));
+}
+
 // What the intersection derives from the quad alone: its normal, unnormalised and unit, and
 // n / |n|^2 for the plane coordinates. The object BVH keeps one per quad (scene.hpp), so that a
 // ray does not normalise a cross product per quad it tests; the numbers are the same either way.
 template <class T> struct quad_plane_t {
   vec3_t<T> n_raw, N, w;
   explicit quad_plane_t(const parallelogram_t<T>& q)
-      : n_raw(glm::cross(q.u, q.v)), N(normalize_or_zero(n_raw)), w(n_raw / glm::dot(n_raw, n_raw)) {}
+      : n_raw(glm::cross(q.u, q.v)), N(normalize_or_zero(n_raw)), w(plane_coordinate_vector(n_raw, N)) {}
 };
 
 // Where a ray meets the quad with t in (t_min, t_max): t and the plane coordinates (a, b), or
