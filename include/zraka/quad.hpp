@@ -17,7 +17,6 @@
 #include <zraka/ray.hpp>
 #include <zraka/spawn.hpp>
 
-#include <cmath>
 #include <limits>
 #include <optional>
 
@@ -43,16 +42,14 @@ using quadf = parallelogram_t<float>;
 
 // n / |n|^2 for the plane coordinates, given n = u x v and its unit N. Where |n|^2 leaves T's
 // normal range (float: edges below ~1e-10 or above ~4e9; double: ~1e-77 and ~1e77) the quotient
-// would be inf or 0, a quad never hit or one as wide as its plane; there w is N / |n|, with |n|
-// found by rescaling n as normalize_or_zero does (vec.hpp), never by squaring it. Inside the
-// range, and for a degenerate quad (n = 0: NaN, never hit), the plain quotient: the same bits as
-// ever.
+// would be inf or 0, a quad never hit or one as wide as its plane; there w is N / |n|, with
+// |n| = N.n, which never squares n (N is already normalize_or_zero's careful unit). Inside the
+// range the plain quotient: the same bits as ever. A degenerate or non-finite n has N = 0, so
+// 0 / 0: NaN, never hit, as before.
 template <class T> vec3_t<T> plane_coordinate_vector(const vec3_t<T>& n, const vec3_t<T>& N) {
-  const T d = glm::dot(n, n), m = max_component(glm::abs(n));
-  if ((d >= std::numeric_limits<T>::min() && d <= std::numeric_limits<T>::max()) || !(m > T(0)) || !is_finite(n))
-    return n / d;
-  const vec3_t<T> s = n / m;
-  return N / (m * std::sqrt(glm::dot(s, s)));
+  const T d = glm::dot(n, n);
+  if (d >= std::numeric_limits<T>::min() && d <= std::numeric_limits<T>::max()) return n / d;
+  return N / glm::dot(N, n);
 }
 
 // What the intersection derives from the quad alone: its normal, unnormalised and unit, and
