@@ -55,6 +55,7 @@
 // light: the object's index in the light table, or -1 (not a sampled light)
 typedef struct { float4 center_radius; int material, light, p1, p2; } sphere_t;
 typedef struct { float4 corner, u, v, normal_area, w; int material, light, p1, p2; } quad_t;
+typedef struct { float4 nx, ny, nz, qx, qy, qz, ux, uy, uz, vx, vy, vz, wx, wy, wz; } quad4_t;  // lane i: quad 4k+i
 typedef struct { float4 point, normal; int material, p0, p1, p2; } plane_t;
 typedef struct { float4 a, b, c; uint id; int material, light, p1; } triangle_t;
 typedef struct { float box[6][4]; uint child[4], count[4]; } node4_t;
@@ -112,6 +113,7 @@ typedef struct { float4 origin, u, v, corner, horizontal, vertical; float lens_r
 typedef struct {
   global const sphere_t* spheres;
   global const quad_t* quads;
+  global const quad4_t* quad_groups;
   global const plane_t* planes;
   global const triangle_t* tris;
   global const node4_t* nodes;
@@ -247,34 +249,73 @@ bool hit_sphere(const sphere_t s, float3 o, float3 D, float t_max, hit_t* h) {
 #endif
 
 #ifdef HAS_QUADS
-bool hit_quad(const quad_t q, float3 o, float3 D, float t_max, hit_t* h) {
-  const float3 u = q.u.xyz, v = q.v.xyz, Q = q.corner.xyz;
-  const float3 N = q.normal_area.xyz;
-  const float denom = dot(N, D);
-  const float3 QO = Q - o;
-  const float s = dot(N, QO);
-  const float t = s / denom;
-  if (!(t > 0.0f && t < t_max)) return false;  // quad.hpp's order: the test that rejects most first
-  if (!(fabs(denom) > GAMMA(3) * dot(fabs(N), fabs(D)))) return false;  // parallel (or NaN)
-  const float s_error = GAMMA(4) * dot(fabs(N), fabs(Q) + fabs(o)) + GAMMA(4) * length(QO);
-  if (!(fabs(s) > s_error)) return false;
-  const float3 d = (o + t * D) - Q;
-  const float3 w = q.w.xyz;  // quad.hpp's quad_plane_t::w, computed once by pack_scene
-  const float a = dot(w, cross(d, v));
-  const float b = dot(w, cross(u, d));
-  if (!(a >= 0.0f && a <= 1.0f && b >= 0.0f && b <= 1.0f)) return false;
-  if (h) {
-    h->t = t;
-    h->p = Q + a * u + b * v;
-    h->p_error = GAMMA(4) * (fabs(Q) + fabs(a * u) + fabs(b * v));
-    h->normal = N;
-    h->material = q.material;
-    h->light = q.light;
-#ifdef HAS_SURFACE_UV
-    h->uv = (float2)(a, b);
-#endif
+// [listing cl-quad4]
+// quad.hpp's quad_root on four quads at once, lane by lane in float4 (each line below is that
+// function's line, for each lane): the lanes (-1) whose quad the ray meets with t in (0, t_max),
+// and their t, a, b. All four lanes run every test: leaving early when no t is in range was no
+// faster on PoCL (the branch costs what it saves).
+int4 quad4_roots(const quad4_t q, float3 o, float3 D, float t_max, float4* t_out, float4* a_out, float4* b_out) {
+  const float4 denom = q.nx * D.x + q.ny * D.y + q.nz * D.z;
+  const float4 qox = q.qx - o.x, qoy = q.qy - o.y, qoz = q.qz - o.z;
+  const float4 s = q.nx * qox + q.ny * qoy + q.nz * qoz;
+  const float4 t = s / denom;
+  int4 hit = (t > 0.0f) & (t < t_max);
+  const float4 nax = fabs(q.nx), nay = fabs(q.ny), naz = fabs(q.nz);
+  hit &= fabs(denom) > GAMMA(3) * (nax * fabs(D.x) + nay * fabs(D.y) + naz * fabs(D.z));  // parallel
+  const float4 s_error = GAMMA(4) * (nax * (fabs(q.qx) + fabs(o.x)) + nay * (fabs(q.qy) + fabs(o.y)) +
+                                     naz * (fabs(q.qz) + fabs(o.z))) +
+                         GAMMA(4) * sqrt(qox * qox + qoy * qoy + qoz * qoz);
+  hit &= fabs(s) > s_error;  // the origin on the plane
+  const float4 dx = (o.x + t * D.x) - q.qx, dy = (o.y + t * D.y) - q.qy, dz = (o.z + t * D.z) - q.qz;
+  const float4 a = q.wx * (dy * q.vz - dz * q.vy) + q.wy * (dz * q.vx - dx * q.vz) + q.wz * (dx * q.vy - dy * q.vx);
+  const float4 b = q.wx * (q.uy * dz - q.uz * dy) + q.wy * (q.uz * dx - q.ux * dz) + q.wz * (q.ux * dy - q.uy * dx);
+  hit &= (a >= 0.0f) & (a <= 1.0f) & (b >= 0.0f) & (b <= 1.0f);
+  *t_out = t;
+  *a_out = a;
+  *b_out = b;
+  return hit;
+}
+// [end]
+
+// The nearest quad with t in (0, t_max): its index and (t, a, b), or -1. Ties go to the lower
+// index, as in a loop quad by quad.
+int nearest_quad(const scene_t* sc, float3 o, float3 D, float t_max, float* t_hit, float* a_hit, float* b_hit) {
+  int best = -1;
+  const int groups = (sc->n_quads + 3) / 4;
+  for (int k = 0; k < groups; ++k) {
+    float4 t, a, b;
+    const int4 hit = quad4_roots(sc->quad_groups[k], o, D, t_max, &t, &a, &b);
+    if (!any(hit)) continue;
+    float lt[4], la[4], lb[4];
+    vstore4(select((float4)(INFINITY), t, hit), 0, lt);
+    vstore4(a, 0, la);
+    vstore4(b, 0, lb);
+    for (int i = 0; i < 4; ++i)
+      if (lt[i] < t_max) { t_max = lt[i]; best = 4 * k + i; *t_hit = lt[i]; *a_hit = la[i]; *b_hit = lb[i]; }
   }
-  return true;
+  return best;
+}
+
+bool any_quad(const scene_t* sc, float3 o, float3 D, float t_max) {
+  const int groups = (sc->n_quads + 3) / 4;
+  float4 t, a, b;
+  for (int k = 0; k < groups; ++k)
+    if (any(quad4_roots(sc->quad_groups[k], o, D, t_max, &t, &a, &b))) return true;
+  return false;
+}
+
+// quad.hpp's intersect: the hit record of quad q at (t, a, b).
+void quad_hit(const quad_t q, float t, float a, float b, hit_t* h) {
+  const float3 u = q.u.xyz, v = q.v.xyz, Q = q.corner.xyz;
+  h->t = t;
+  h->p = Q + a * u + b * v;
+  h->p_error = GAMMA(4) * (fabs(Q) + fabs(a * u) + fabs(b * v));
+  h->normal = q.normal_area.xyz;
+  h->material = q.material;
+  h->light = q.light;
+#ifdef HAS_SURFACE_UV
+  h->uv = (float2)(a, b);
+#endif
 }
 #endif
 
@@ -502,8 +543,9 @@ bool nearest_hit(const scene_t* sc, float3 o, float3 D, hit_t* h) {
     if (hit_sphere(sc->spheres[i], o, D, t_max, h)) { found = true; t_max = h->t; }
 #endif
 #ifdef HAS_QUADS
-  for (int i = 0; i < sc->n_quads; ++i)
-    if (hit_quad(sc->quads[i], o, D, t_max, h)) { found = true; t_max = h->t; }
+  float tq, a, b;
+  const int q = nearest_quad(sc, o, D, t_max, &tq, &a, &b);
+  if (q >= 0) { quad_hit(sc->quads[q], tq, a, b, h); found = true; t_max = tq; }
 #endif
 #ifdef HAS_TRIANGLES
   if (hit_bvh(sc, o, D, t_max, h)) found = true;
@@ -525,8 +567,7 @@ bool occluded(const scene_t* sc, float3 o, float3 D, float t_max) {
     if (hit_sphere(sc->spheres[i], o, D, t_max, 0)) return true;
 #endif
 #ifdef HAS_QUADS
-  for (int i = 0; i < sc->n_quads; ++i)
-    if (hit_quad(sc->quads[i], o, D, t_max, 0)) return true;
+  if (any_quad(sc, o, D, t_max)) return true;
 #endif
 #ifdef HAS_TRIANGLES
   if (hit_bvh(sc, o, D, t_max, 0)) return true;
@@ -1474,7 +1515,7 @@ uchar srgb_byte(float c, global const float* steps) {
 // accum and their squares to accum_sq (sample_offset 0: starts both afresh), and writes the
 // running mean as sRGB bytes for display, bottom row first as OpenGL textures are stored.
 kernel void render(global const sphere_t* spheres, global const quad_t* quads,
-                   global const plane_t* planes, global const triangle_t* tris,
+                   global const quad4_t* quad_groups, global const plane_t* planes, global const triangle_t* tris,
                    global const node4_t* nodes, global const material_t* materials,
                    global const light_t* lights, global const light_triangle_t* light_tris,
                    global const camera_t* camera, global float4* accum, global float4* accum_sq,
@@ -1486,7 +1527,7 @@ kernel void render(global const sphere_t* spheres, global const quad_t* quads,
                    global const float* srgb_steps) {
   const uint x = get_global_id(0), y = get_global_id(1);
   if (x >= width || y >= height) return;
-  scene_t sc = {spheres, quads, planes, tris, nodes, materials, lights, light_tris,
+  scene_t sc = {spheres, quads, quad_groups, planes, tris, nodes, materials, lights, light_tris,
                 n_spheres, n_quads, n_planes, n_lights, n_nodes, background.xyz};
 #ifdef HAS_TEXTURES
   sc.textures = textures;
@@ -1544,6 +1585,7 @@ kernel void layout(global uint* out) {
   if (get_global_id(0) != 0) return;
   sphere_t v_sphere_t;
   quad_t v_quad_t;
+  quad4_t v_quad4_t;
   plane_t v_plane_t;
   triangle_t v_triangle_t;
   node4_t v_node4_t;
@@ -1553,7 +1595,7 @@ kernel void layout(global uint* out) {
   camera_t v_camera_t;
   texture_t v_texture_t;
   environment_t v_environment_t;
-  const uint values[36] = {SIZE_AND(sphere_t, material), SIZE_AND(sphere_t, light),
+  const uint values[38] = {SIZE_AND(sphere_t, material), SIZE_AND(sphere_t, light),
                            SIZE_AND(quad_t, material), SIZE_AND(plane_t, material),
                            SIZE_AND(triangle_t, material), SIZE_AND(triangle_t, light),
                            SIZE_AND(node4_t, count), SIZE_AND(material_t, fuzz),
@@ -1561,8 +1603,9 @@ kernel void layout(global uint* out) {
                            SIZE_AND(light_t, cdf), SIZE_AND(light_triangle_t, c),
                            SIZE_AND(material_t, eta), SIZE_AND(material_t, albedo_texture),
                            SIZE_AND(material_t, roughness), SIZE_AND(texture_t, kind),
-                           SIZE_AND(texture_t, cell), SIZE_AND(environment_t, cos_rotation)};
-  for (int i = 0; i < 36; ++i) out[i] = values[i];
+                           SIZE_AND(texture_t, cell), SIZE_AND(environment_t, cos_rotation),
+                           SIZE_AND(quad4_t, wz)};
+  for (int i = 0; i < 38; ++i) out[i] = values[i];
 }
 
 #ifdef PROBES
@@ -1615,6 +1658,25 @@ kernel void probe_microfacet(global const material_t* materials, global const fl
   out[4 * i + 1] = (float4)(sw, spdf);
   out[4 * i + 2] = (float4)(weight, ok ? 1.0f : 0.0f);
   out[4 * i + 3] = (float4)(0.0f);
+}
+#endif
+#ifdef HAS_QUADS
+// Ray i is in[2i] (origin) and in[2i + 1] (direction, w: t_max). out[2i] = (t, a, b, index) of
+// the nearest quad (index -1: none); out[2i + 1].x = 1 if any quad is in the way, else 0.
+kernel void probe_quads(global const quad_t* quads, global const quad4_t* quad_groups, int n_quads,
+                        global const float4* in, global float4* out, int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  scene_t sc;
+  sc.quads = quads;
+  sc.quad_groups = quad_groups;
+  sc.n_quads = n_quads;
+  const float3 o = in[2 * i].xyz, D = in[2 * i + 1].xyz;
+  const float t_max = in[2 * i + 1].w;
+  float t = 0.0f, a = 0.0f, b = 0.0f;
+  const int q = nearest_quad(&sc, o, D, t_max, &t, &a, &b);
+  out[2 * i] = (float4)(t, a, b, (float)q);
+  out[2 * i + 1] = (float4)(any_quad(&sc, o, D, t_max) ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
 }
 #endif
 #ifdef HAS_IMAGE_TEXTURES

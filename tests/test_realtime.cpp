@@ -338,11 +338,11 @@ TEST_CASE("the kernel sees the structs gpu_scene.hpp packs: same sizes and offse
   const auto prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
                                             "-cl-std=CL1.2 -DHAS_SPHERES -DMETHOD_MIS");
   const auto k = cl::make_kernel(prog, "layout");
-  const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, 36 * sizeof(cl_uint));
+  const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, 38 * sizeof(cl_uint));
   cl::set_args(k, out);
   cl::run_1d(*ctx, k, 1);
-  std::vector<cl_uint> v(36);
-  ctx->read(out, 36 * sizeof(cl_uint), v.data());
+  std::vector<cl_uint> v(38);
+  ctx->read(out, 38 * sizeof(cl_uint), v.data());
   const std::vector<cl_uint> host = {
       sizeof(gpu_sphere), offsetof(gpu_sphere, material), sizeof(gpu_sphere), offsetof(gpu_sphere, light),
       sizeof(gpu_quad), offsetof(gpu_quad, material), sizeof(gpu_plane), offsetof(gpu_plane, material),
@@ -353,8 +353,8 @@ TEST_CASE("the kernel sees the structs gpu_scene.hpp packs: same sizes and offse
       sizeof(gpu_material), offsetof(gpu_material, eta), sizeof(gpu_material), offsetof(gpu_material, albedo_texture),
       sizeof(gpu_material), offsetof(gpu_material, roughness), sizeof(gpu_texture), offsetof(gpu_texture, kind),
       sizeof(gpu_texture), offsetof(gpu_texture, cell), sizeof(gpu_environment),
-      offsetof(gpu_environment, cos_rotation)};
-  for (std::size_t i = 0; i < 36; ++i) CHECK(v[i] == host[i]);
+      offsetof(gpu_environment, cos_rotation), sizeof(gpu_quad4), offsetof(gpu_quad4, wz)};
+  for (std::size_t i = 0; i < 38; ++i) CHECK(v[i] == host[i]);
 }
 
 // Issue 11's scene: naive cannot find the point light, and says so, on the CPU and here.
@@ -647,6 +647,120 @@ TEST_CASE("the kernel's microfacets: f, pdf and samples as microfacet.hpp's, gra
   MESSAGE(compared << " cases compared with microfacet.hpp, " << sampled << " samples");
   CHECK(compared > 150);
   CHECK(sampled > 60);
+}
+
+// The kernel tests quads four at a time (quad4_roots); each lane must be quad.hpp's quad_root on
+// the packed numbers. Seven quads (the second group has an empty lane), a tiny and a huge one
+// among them; rays from anywhere, rays aimed at and just beside each quad, rays leaving a quad's
+// surface (which must not see it again) and rays grazing its plane.
+TEST_CASE("the kernel's quads four at a time: each lane is quad.hpp's test (nearest and any hit)") {
+  auto ctx = device();
+  if (!ctx) return;
+  scene sc;
+  const int m = sc.add_material(material::lambertian(rgb(0.5f)));
+  sc.add(quad{{-2, -2, -3}, {4, 0, 0}, {0, 4, 0}}, m);                      // back wall
+  sc.add(quad{{-2, -2, -3}, {0, 0, 5}, {4, 0, 0}}, m);                      // floor
+  sc.add(quad{{-2, -2, -3}, {0, 4, 0}, {0, 0, 5}}, m);                      // left wall
+  sc.add(quad{{-0.5, 0.3, -1}, {1, 0.2, 0.1}, {-0.1, 0.3, 0.8}}, m);        // slanted
+  sc.add(quad{{0.25, 0.25, -1.5}, {1e-6, 0, 0}, {0, 1e-6, 0}}, m);         // tiny (float: w = N/|n|)
+  sc.add(quad{{-1e10, 1.5, -1e10}, {2e10, 0, 0}, {0, 0, 2e10}}, m);        // huge ceiling
+  sc.add(quad{{1, -1, -2}, {0, 1.5, 0}, {0.2, 0, 1}}, m);
+  const gpu_scene g = pack_scene(sc, 4, 4, method(integrator::mis));
+  REQUIRE(g.quads.size() == 7);
+  REQUIRE(g.quad_groups.size() == 2);
+  // The CPU's test on the kernel's numbers: the packed corner, edges, unit normal and w.
+  std::vector<quadf> qs;
+  std::vector<quad_plane_t<float>> pls;
+  for (const gpu_quad& q : g.quads) {
+    auto v3 = [](const gpu_float4& v) { return vec3f(v.x, v.y, v.z); };
+    qs.push_back(quadf{v3(q.corner), v3(q.u), v3(q.v)});
+    pls.push_back(quad_plane_t<float>(qs.back()));
+    pls.back().N = v3(q.normal_area);
+    pls.back().w = v3(q.w);
+  }
+  rng r(21, 0, 0);
+  auto uniform = [&](double lo, double hi) { return float(lo + (hi - lo) * r.uniform()); };
+  auto direction = [&] { return glm::normalize(vec3f(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1))); };
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<std::pair<vec3f, glm::vec4>> rays;  // origin; direction and t_max
+  for (int i = 0; i < 400; ++i) rays.push_back({vec3f(uniform(-1.9, 1.9), uniform(-1.9, 1.4), uniform(-2.9, 1)), glm::vec4(direction(), inf)});
+  for (std::size_t j = 0; j < qs.size(); ++j)
+    for (int i = 0; i < 60; ++i) {
+      const bool huge = j == 5;
+      const vec3f o(uniform(-1.5, 1.5), huge ? uniform(-1.5, 1.0) : uniform(-1.5, 1.4), uniform(-1, 1));
+      const float a = huge ? uniform(0.49, 0.51) : uniform(-0.2, 1.2), b = huge ? uniform(0.49, 0.51) : uniform(-0.2, 1.2);
+      const vec3f target = qs[j].point(a, b);
+      const float t_max = i % 3 == 0 ? glm::length(target - o) * uniform(0.5, 1.5) : inf;
+      rays.push_back({o, glm::vec4(glm::normalize(target - o), t_max)});
+      if (j != 5) {
+        const vec3f on = qs[j].point(uniform(0.1, 0.9), uniform(0.1, 0.9));  // leaving the surface
+        rays.push_back({on, glm::vec4(direction(), inf)});
+        rays.push_back({on + 1e-3f * pls[j].N, glm::vec4(glm::normalize(qs[j].u + uniform(-1e-7, 1e-7) * pls[j].N), inf)});
+      }
+    }
+  std::vector<cl_float4> in;
+  for (const auto& [o, d] : rays) {
+    in.push_back({{o.x, o.y, o.z, 0}});
+    in.push_back({{d.x, d.y, d.z, d.w}});
+  }
+  const int n = int(rays.size());
+  const auto prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
+                                            "-cl-std=CL1.2 -DHAS_QUADS -DMETHOD_MIS -DPROBES");
+  const auto k = cl::make_kernel(prog, "probe_quads");
+  const auto quads = ctx->make_buffer(CL_MEM_READ_ONLY, g.quads.size() * sizeof(gpu_quad), g.quads.data());
+  const auto groups = ctx->make_buffer(CL_MEM_READ_ONLY, g.quad_groups.size() * sizeof(gpu_quad4), g.quad_groups.data());
+  const auto inb = ctx->make_buffer(CL_MEM_READ_ONLY, in.size() * sizeof(cl_float4), in.data());
+  const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, in.size() * sizeof(cl_float4));
+  cl::set_args(k, quads, groups, cl_int(g.quads.size()), inb, out, cl_int(n));
+  cl::run_1d(*ctx, k, std::size_t(n));
+  std::vector<cl_float4> o(in.size());
+  ctx->read(out, o.size() * sizeof(cl_float4), o.data());
+  int hits = 0, same = 0, edge = 0;
+  double worst_t = 0;
+  for (int i = 0; i < n; ++i) {
+    const auto& [origin, d] = rays[std::size_t(i)];
+    rayf ray;  // the kernel's direction as it is, not normalised again
+    ray.origin = origin;
+    ray.direction = vec3f(d);
+    int want = -1;
+    quad_root_t<float> best{};
+    for (std::size_t j = 0; j < qs.size(); ++j)
+      if (auto root = quad_root(qs[j], pls[j], ray, 0.0f, want < 0 ? d.w : best.t)) {
+        want = int(j);
+        best = *root;
+      }
+    const cl_float4 got = o[2 * std::size_t(i)];
+    const int index = int(got.s[3]);
+    const bool blocked = o[2 * std::size_t(i) + 1].s[0] == 1.0f;
+    CAPTURE(i);
+    CHECK(index < int(qs.size()));
+    // a and b are known to the rounding of the hit point over the edge's length: on the tiny
+    // quad that is a few hundredths (the CPU's a is as uncertain), elsewhere ~1e-6.
+    auto ab_tolerance = [&](int j, float t) {
+      const float scale = glm::length(origin) + t + glm::length(qs[std::size_t(j)].corner);
+      return 1e-5f * scale / std::min(glm::length(qs[std::size_t(j)].u), glm::length(qs[std::size_t(j)].v));
+    };
+    if (index != want || blocked != (want >= 0)) {
+      // Only a ray through a quad's edge, where the rounding of a or b decides, may differ.
+      auto margin = [](float a, float b) { return std::min({std::abs(a), std::abs(1 - a), std::abs(b), std::abs(1 - b)}); };
+      const bool at_edge = (want >= 0 && margin(best.a, best.b) < ab_tolerance(want, best.t)) ||
+                           (index >= 0 && margin(got.s[1], got.s[2]) < ab_tolerance(index, got.s[0]));
+      CHECK(at_edge);
+      ++edge;
+      continue;
+    }
+    ++same;
+    if (want < 0) continue;
+    ++hits;
+    worst_t = std::max(worst_t, double(std::abs(got.s[0] - best.t)) / double(best.t));
+    CHECK(std::abs(got.s[0] - best.t) <= 8 * std::numeric_limits<float>::epsilon() * best.t);  // fma or not
+    CHECK(std::abs(got.s[1] - best.a) <= ab_tolerance(want, best.t));
+    CHECK(std::abs(got.s[2] - best.b) <= ab_tolerance(want, best.t));
+  }
+  std::printf("quads four at a time: %d rays, %d the CPU's answer (%d hits, worst relative t error %.2g), %d through an edge\n",
+              n, same, hits, worst_t, edge);
+  CHECK(hits > n / 3);
+  CHECK(edge <= n / 200);
 }
 
 TEST_CASE("the kernel's image lookups: texture.hpp's bilinear, repeat and clamp, NaN and huge (u, v)") {

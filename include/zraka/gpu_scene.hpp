@@ -59,6 +59,12 @@ struct gpu_quad {
   gpu_float4 w;            // quad.hpp's quad_plane_t::w, n / |n|^2 for the plane coordinates
   std::int32_t material, light, pad[2];
 };
+// Four quads lane by lane (a structure of arrays): the kernel tests them in one step of float4
+// arithmetic, each lane quad.hpp's test on gpu_quad's numbers. Lanes past the last quad are 0:
+// t = 0/0, never hit.
+struct gpu_quad4 {
+  gpu_float4 nx, ny, nz, qx, qy, qz, ux, uy, uz, vx, vy, vz, wx, wy, wz;
+};
 struct gpu_plane {
   gpu_float4 point, normal;  // unit normal
   std::int32_t material, pad[3];
@@ -127,6 +133,7 @@ static_assert(sizeof(gpu_float4) == 16 && alignof(gpu_float4) == 16);
 static_assert(sizeof(gpu_sphere) == 32 && offsetof(gpu_sphere, material) == 16 && offsetof(gpu_sphere, light) == 20);
 static_assert(sizeof(gpu_quad) == 96 && offsetof(gpu_quad, normal_area) == 48 && offsetof(gpu_quad, w) == 64 &&
               offsetof(gpu_quad, material) == 80);
+static_assert(sizeof(gpu_quad4) == 240 && offsetof(gpu_quad4, wz) == 224);
 static_assert(sizeof(gpu_plane) == 48 && offsetof(gpu_plane, material) == 32);
 static_assert(sizeof(gpu_triangle) == 64 && offsetof(gpu_triangle, id) == 48 &&
               offsetof(gpu_triangle, material) == 52 && offsetof(gpu_triangle, light) == 56);
@@ -161,6 +168,7 @@ struct gpu_features {
 struct gpu_scene {
   std::vector<gpu_sphere> spheres;
   std::vector<gpu_quad> quads;
+  std::vector<gpu_quad4> quad_groups;  // the quads, four by four, for the intersection test
   std::vector<gpu_plane> planes;
   std::vector<gpu_triangle> triangles;
   std::vector<gpu_node4> nodes;
@@ -187,6 +195,23 @@ inline gpu_float4 to_gpu(const rgb& c, float w = 0) { return {c.x, c.y, c.z, w};
 // the edges rounded to float, so that the kernel's plane coordinates are that path's bits.
 template <class T> vec3_t<float> float_quad_w(const parallelogram_t<T>& q) {
   return quad_plane_t<float>(parallelogram_t<float>{vec3_t<float>(q.corner), vec3_t<float>(q.u), vec3_t<float>(q.v)}).w;
+}
+
+// The quads four by four, lane i of group k quad 4k + i (gpu_quad4).
+inline std::vector<gpu_quad4> quad_groups(const std::vector<gpu_quad>& quads) {
+  auto lane = [](gpu_float4& v, std::size_t k) -> float& { return k == 0 ? v.x : k == 1 ? v.y : k == 2 ? v.z : v.w; };
+  std::vector<gpu_quad4> groups((quads.size() + 3) / 4);
+  for (std::size_t i = 0; i < quads.size(); ++i) {
+    gpu_quad4& g = groups[i / 4];
+    const gpu_quad& q = quads[i];
+    const std::size_t k = i % 4;
+    lane(g.nx, k) = q.normal_area.x, lane(g.ny, k) = q.normal_area.y, lane(g.nz, k) = q.normal_area.z;
+    lane(g.qx, k) = q.corner.x, lane(g.qy, k) = q.corner.y, lane(g.qz, k) = q.corner.z;
+    lane(g.ux, k) = q.u.x, lane(g.uy, k) = q.u.y, lane(g.uz, k) = q.u.z;
+    lane(g.vx, k) = q.v.x, lane(g.vy, k) = q.v.y, lane(g.vz, k) = q.v.z;
+    lane(g.wx, k) = q.w.x, lane(g.wy, k) = q.w.y, lane(g.wz, k) = q.w.z;
+  }
+  return groups;
 }
 
 namespace detail {
@@ -524,6 +549,7 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   g.camera = to_gpu(c.prepare());
   g.background = to_gpu(sc.background);
   f.spheres = !g.spheres.empty();
+  g.quad_groups = quad_groups(g.quads);
   f.quads = !g.quads.empty();
   f.planes = !g.planes.empty();
   f.triangles = !g.nodes.empty();

@@ -101,7 +101,7 @@ class gpu_renderer {
   double build_seconds_ = 0;
   cl::program_handle program_;
   cl::kernel_handle kernel_;
-  cl::buffer spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, light_tris_, camera_, accum_,
+  cl::buffer spheres_, quads_, quad_groups_, planes_, tris_, nodes_, materials_, lights_, light_tris_, camera_, accum_,
       accum_sq_, display_, textures_, texels_, tri_uvs_, env_, env_tables_, noise_, srgb_steps_;
   std::uint32_t samples_ = 0;
   using event_handle = cl::handle<cl_event, clReleaseEvent>;
@@ -123,6 +123,7 @@ ZRAKA_OPENCL_FN gpu_renderer::gpu_renderer(const cl::context& c, const gpu_scene
   build_seconds_ = clock.seconds();
   spheres_ = upload(s.spheres);
   quads_ = upload(s.quads);
+  quad_groups_ = upload(s.quad_groups);
   planes_ = upload(s.planes);
   tris_ = upload(s.triangles);
   nodes_ = upload(s.nodes);
@@ -151,7 +152,7 @@ ZRAKA_OPENCL_FN gpu_renderer::~gpu_renderer() = default;
 ZRAKA_OPENCL_FN void gpu_renderer::launch(std::uint32_t n) {
   const gpu_scene& s = scene_;
   const cl_float4 bg = {{s.background.x, s.background.y, s.background.z, 0.0f}};
-  cl::set_args(kernel_, spheres_, quads_, planes_, tris_, nodes_, materials_, lights_, light_tris_,
+  cl::set_args(kernel_, spheres_, quads_, quad_groups_, planes_, tris_, nodes_, materials_, lights_, light_tris_,
                camera_, accum_, accum_sq_, display_, cl_int(s.spheres.size()), cl_int(s.quads.size()),
                cl_int(s.planes.size()), cl_int(s.lights.size()), cl_int(s.nodes.size()),
                cl_uint(width_), cl_uint(height_), cl_uint(samples_), cl_uint(n),
