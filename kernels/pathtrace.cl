@@ -249,11 +249,13 @@ bool hit_sphere(const sphere_t s, float3 o, float3 D, float t_max, hit_t* h) {
 #endif
 
 #ifdef HAS_QUADS
+#pragma OPENCL FP_CONTRACT OFF
 // [listing cl-quad4]
 // quad.hpp's quad_root on four quads at once, lane by lane in float4 (each line below is that
 // function's line, for each lane): the lanes (-1) whose quad the ray meets with t in (0, t_max),
 // and their t, a, b. All four lanes run every test: leaving early when no t is in range was no
-// faster on PoCL (the branch costs what it saves).
+// faster on PoCL (the branch costs what it saves). Products are not fused into multiply-adds
+// here, so that each lane rounds as quad_root does: the same quad, t, a and b, bit for bit.
 int4 quad4_roots(const quad4_t q, float3 o, float3 D, float t_max, float4* t_out, float4* a_out, float4* b_out) {
   const float4 denom = q.nx * D.x + q.ny * D.y + q.nz * D.z;
   const float4 qox = q.qx - o.x, qoy = q.qy - o.y, qoz = q.qz - o.z;
@@ -276,6 +278,7 @@ int4 quad4_roots(const quad4_t q, float3 o, float3 D, float t_max, float4* t_out
   return hit;
 }
 // [end]
+#pragma OPENCL FP_CONTRACT ON
 
 // The nearest quad with t in (0, t_max): its index and (t, a, b), or -1. Ties go to the lower
 // index, as in a loop quad by quad.
@@ -614,9 +617,8 @@ float3 to_local(float3 n, float3 v) {
 }
 
 float3 sample_cosine_hemisphere(float2 u) {
-  const float u0 = clamp_unit(u.x), phi = 2.0f * PI_F * clamp_unit(u.y), s = sqrt(u0);
-  float cos_phi;
-  const float sin_phi = sincos(phi, &cos_phi);
+  const float u0 = clamp_unit(u.x), v = 2.0f * clamp_unit(u.y), s = sqrt(u0);
+  const float sin_phi = sinpi(v), cos_phi = cospi(v);  // phi = pi v: see sample_cone
   return (float3)(s * cos_phi, s * sin_phi, sqrt(1.0f - u0));
 }
 float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? cos_theta / PI_F : 0.0f; }
@@ -633,9 +635,11 @@ float3 cone_axis(float3 d) {
 }
 float3 sample_cone(float2 u, float h_max) {
   const float h = clamp_unit(u.x) * h_max;
-  const float s = sqrt(h * (2.0f - h)), phi = 2.0f * PI_F * clamp_unit(u.y);
-  float cos_phi;
-  const float sin_phi = sincos(phi, &cos_phi);
+  // phi = 2 pi u.y = pi v. sinpi and cospi reduce v exactly and cheaply (PoCL's sin and cos
+  // of phi spent 6 % of the Cornell box's time reducing phi), and keep the digits 2 pi's
+  // rounding in float would lose.
+  const float s = sqrt(h * (2.0f - h)), v = 2.0f * clamp_unit(u.y);
+  const float sin_phi = sinpi(v), cos_phi = cospi(v);
   return (float3)(s * cos_phi, s * sin_phi, 1.0f - h);
 }
 bool in_cone(float3 w, float h_max) {
