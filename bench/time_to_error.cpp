@@ -1,6 +1,7 @@
 // Time to an error (issue 17, book 4.2): how many seconds each integrator and sampler needs to
 // bring one scene to a given RMSE, and, when Mitsuba 3 is installed, how many Mitsuba's
-// `scalar_rgb` needs on the same scene in the same run. Not a test: it takes minutes.
+// `scalar_rgb` needs on the same scene in the same run (and its JIT-compiled SIMD variant
+// `llvm_ad_rgb`, with --mitsuba-variants scalar_rgb,llvm_ad_rgb). Not a test: it takes minutes.
 //
 // The scene is RTIOW book 3's Cornell box with a glass sphere (scenes/rtiow-cornell.yaml). The
 // error is measured where RTIOW's own figures live, in its output space: a square root (gamma 2)
@@ -20,7 +21,7 @@
 // launches that double the samples; on PoCL it runs on the same cores (--threads does not bind it).
 //   build/bin/time_to_error [--scene S] [--target RMSE] [--max-seconds S] [--ref-spp N]
 //                           [--integrators mis,nee,bdpt,kernel] [--precisions double,float] [--rr-depth N]
-//                           [--mitsuba PYTHON|none] [--threads T]
+//                           [--mitsuba PYTHON|none] [--mitsuba-variants scalar_rgb,llvm_ad_rgb] [--threads T]
 #include <zraka/bdpt.hpp>
 #include <zraka/cli.hpp>
 #include <zraka/convergence.hpp>
@@ -111,22 +112,23 @@ void print_row(const result_t& r, double target, double pixels) {
   std::fflush(stdout);
 }
 
-// Mitsuba 3 scalar_rgb on the scene exported as JSON: reads the images its script writes as they
+// Mitsuba 3 (`variant`) on the scene exported as JSON: reads the images its script writes as they
 // come, measures them here, and ends the script once the target is reached.
-std::optional<result_t> run_mitsuba(const std::string& python, const scene& sc, int depth, const std::string& stem,
-                                    const output_error& err, double target, double max_seconds) {
+std::optional<result_t> run_mitsuba(const std::string& python, const std::string& variant, const scene& sc, int depth,
+                                    const std::string& stem, const output_error& err, double target,
+                                    double max_seconds) {
   const std::string json = output_file("tte-" + stem + "-mitsuba.json").string();
-  const std::string out = output_file("tte-" + stem + "-mitsuba.pfm").string();
+  const std::string out = output_file("tte-" + stem + "-mitsuba-" + variant + ".pfm").string();
   write_file_atomically(json, mitsuba_scene_json(sc, sc.settings.width, sc.settings.height, depth));
   std::error_code ec;
   std::filesystem::remove(out + ".stop", ec);
   const std::string script = resource_path("tools/mitsuba_reference.py").string();
   // `exec` makes the shell's pid the script's, which `echo $$` printed first.
   const std::string cmd = "echo $$; exec '" + python + "' '" + script + "' '" + json + "' -o '" + out +
-                          "' --spp 65536 --doubling " + std::to_string(max_seconds);
+                          "' --variant " + variant + " --spp 65536 --doubling " + std::to_string(max_seconds);
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) throw error("cannot start " + python);
-  result_t r{"mitsuba scalar_rgb", convergence_log("mitsuba on " + stem, {"rmse"}, "rmse", "spp")};
+  result_t r{"mitsuba " + variant, convergence_log("mitsuba " + variant + " on " + stem, {"rmse"}, "rmse", "spp")};
   long pid = 0;
   char line[4096];
   bool stopped = false;
@@ -171,7 +173,7 @@ int main(int argc, char** argv) {
   double target = 0.014, max_seconds = 60;
   int ref_spp = 8192, rr_depth = path_options{}.rr_depth;
   std::string integrators = "mis,nee,bdpt", samplers = "independent", precisions = "double,float";
-  std::string mitsuba = "build/mitsuba-venv/bin/python";
+  std::string mitsuba = "build/mitsuba-venv/bin/python", mitsuba_variants = "scalar_rgb";
   cli.app.add_option("--target", target, "the RMSE to reach, in RTIOW's output space (gamma 2, clamped to [0, 1])");
   cli.app.add_option("--max-seconds", max_seconds, "a method stops after a pass that ends later than this");
   cli.app.add_option("--ref-spp", ref_spp, "samples per pixel of the mis reference (made once, cached in build/out/)");
@@ -184,6 +186,9 @@ int main(int argc, char** argv) {
   cli.app.add_option("--precisions", precisions, "comma-separated: double, float (the arithmetic of the path tracers and of BDPT)");
   cli.app.add_option("--mitsuba", mitsuba,
                      "the Python that has the mitsuba package (relative: to the checkout); none: leave Mitsuba out");
+  cli.app.add_option("--mitsuba-variants", mitsuba_variants,
+                     "comma-separated Mitsuba variants, each a row: scalar_rgb, llvm_ad_rgb (JIT-compiled SIMD; "
+                     "needs LLVM 19, tools/setup.sh --extras)");
   if (const auto done = cli.parse(argc, argv)) return *done;
 
   return guarded([&] {
@@ -195,6 +200,9 @@ int main(int argc, char** argv) {
     const std::vector<std::string> precision_names = split_list(precisions, "--precisions");
     for (const std::string& s : precision_names)
       if (s != "double" && s != "float") throw error("unknown precision '" + s + "' (double, float)");
+    const std::vector<std::string> variants = split_list(mitsuba_variants, "--mitsuba-variants");
+    for (const std::string& v : variants)
+      if (v != "scalar_rgb" && v != "llvm_ad_rgb") throw error("unknown Mitsuba variant '" + v + "' (scalar_rgb, llvm_ad_rgb)");
     scene sc = load_scene_argument(cli.scene).sc;
     cli.apply_to(sc.settings);
     sc.build_acceleration();
@@ -297,16 +305,20 @@ int main(int argc, char** argv) {
         }
     }
 
-    std::optional<result_t> mi;
+    std::vector<result_t> mi;  // one row per Mitsuba variant that ran
     if (mitsuba != "none") {
       std::filesystem::path py(mitsuba);
       if (py.is_relative()) py = resource_root() / py;
       std::error_code ec;
-      if (std::filesystem::exists(py, ec)) {
-        mi = run_mitsuba(py.string(), sc, po.max_depth, stem, err, target, max_seconds);
-        if (mi) print_row(*mi, target, double(W) * H);
-      } else {
-        std::printf("%-26s not run: %s not found (bash tools/mitsuba-setup.sh)\n", "mitsuba scalar_rgb", py.c_str());
+      for (const std::string& v : variants) {
+        if (!std::filesystem::exists(py, ec)) {
+          std::printf("%-26s not run: %s not found (bash tools/mitsuba-setup.sh)\n", ("mitsuba " + v).c_str(), py.c_str());
+          continue;
+        }
+        if (auto r = run_mitsuba(py.string(), v, sc, po.max_depth, stem, err, target, max_seconds)) {
+          print_row(*r, target, double(W) * H);
+          mi.push_back(std::move(*r));
+        }
       }
     }
     for (const result_t& r : results) {
@@ -314,9 +326,13 @@ int main(int argc, char** argv) {
       std::replace(name.begin(), name.end(), ' ', '-');
       r.log.write_csv(output_file("tte-" + stem + "-" + name + ".csv"));
     }
-    if (mi) mi->log.write_csv(output_file("tte-" + stem + "-mitsuba.csv"));
+    for (const result_t& r : mi) {
+      std::string name = r.method;
+      std::replace(name.begin(), name.end(), ' ', '-');
+      r.log.write_csv(output_file("tte-" + stem + "-" + name + ".csv"));
+    }
 
-    // The summary: the fastest of zraka's methods, against Mitsuba when it ran and got there.
+    // The summary: the fastest of zraka's methods, against each Mitsuba variant that ran.
     const result_t* best = nullptr;
     double best_t = 0;
     for (const result_t& r : results)
@@ -324,12 +340,13 @@ int main(int argc, char** argv) {
     std::printf("\nsummary: %.1f s in all", total.seconds());
     if (best) std::printf("; fastest: %s, %.2f s", best->method.c_str(), best_t);
     else std::printf("; no zraka method reached %.4f", target);
-    if (mi) {
-      if (const double t = seconds_to_reach(mi->log, target); !std::isnan(t)) {
-        std::printf("; Mitsuba scalar_rgb %.2f s", t);
+    for (const result_t& r : mi) {
+      const std::string name = "M" + r.method.substr(1);  // "Mitsuba scalar_rgb"
+      if (const double t = seconds_to_reach(r.log, target); !std::isnan(t)) {
+        std::printf("; %s %.2f s", name.c_str(), t);
         if (best) std::printf(" (%.2fx)", t / best_t);
       } else {
-        std::printf("; Mitsuba did not reach it");
+        std::printf("; %s did not reach it", name.c_str());
       }
     }
     std::printf("; %llu NaN/inf samples in the reference\n", static_cast<unsigned long long>(bad));

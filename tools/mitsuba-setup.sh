@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Makes the Python venv that tools/mitsuba_reference.py runs in: build/mitsuba-venv with Mitsuba 3
-# from PyPI (its scalar_rgb variant, CPU only) and numpy. Does nothing when the venv already
+# from PyPI (its scalar_rgb variant, CPU only; llvm_ad_rgb too where LLVM 19 is installed, which
+# tools/setup.sh --extras does: Dr.Jit 1.5 cannot compile with Debian 12's default LLVM 14) and numpy. Does nothing when the venv already
 # imports mitsuba. Independent validation of the path tracer (book 4.2); never part of the tests.
 # Needs Debian's python3-venv (bash tools/setup.sh --extras installs it).
 # Usage: bash tools/mitsuba-setup.sh    then: build/mitsuba-venv/bin/python tools/mitsuba_reference.py ...

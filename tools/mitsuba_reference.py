@@ -1,5 +1,7 @@
 #!/usr/bin/env python3
 """Renders a zraka scene with Mitsuba 3 (scalar_rgb), as an independent reference (book 4.2).
+(`--variant llvm_ad_rgb` renders with Mitsuba's JIT-compiled SIMD variant instead, for speed
+comparisons: bench/time_to_error's --mitsuba-variants.)
 
     bash tools/mitsuba-setup.sh                          # once: build/mitsuba-venv with mitsuba
     build/bin/pathtrace --scene cornell-glass --export cg.json
@@ -259,6 +261,8 @@ def main():
     ap.add_argument("--compare", help="a zraka PFM of the same scene: print RMSE and channel means")
     ap.add_argument("--crop", type=int, nargs=4, metavar=("X0", "Y0", "X1", "Y1"),
                     help="compare only pixels x0 <= x < x1, y0 <= y < y1 (rows from the top)")
+    ap.add_argument("--variant", default="scalar_rgb", choices=["scalar_rgb", "llvm_ad_rgb"],
+                    help="Mitsuba's variant (default scalar_rgb; llvm_ad_rgb needs libLLVM)")
     ap.add_argument("--doubling", type=float, metavar="SECONDS",
                     help="render 1, 2, 4, ... spp up to --spp, one PFM each, until a render takes longer")
     ap.add_argument("--diff", nargs=2, metavar=("A.pfm", "B.pfm"),
@@ -277,7 +281,7 @@ def main():
     import mitsuba as mi
     import numpy as np
 
-    mi.set_variant("scalar_rgb")
+    mi.set_variant(a.variant)
     with tempfile.TemporaryDirectory() as work:
         try:
             d = scene_dict(js, mi, work)
@@ -291,7 +295,7 @@ def main():
         img = np.array(mi.render(scene, spp=a.spp, seed=a.seed), dtype=np.float64)[:, :, :3]
         secs = time.time() - start
     write_pfm(a.out, img)
-    print(f"Mitsuba {mi.__version__} scalar_rgb: {js['width']}x{js['height']}, {a.spp} spp, "
+    print(f"Mitsuba {mi.__version__} {a.variant}: {js['width']}x{js['height']}, {a.spp} spp, "
           f"max_depth {js['max_depth'] + 1} (zraka: {js['max_depth']} bounces) in {secs:.1f} s; wrote {a.out}")
     if a.compare:
         compare(a.compare, img, a.crop)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian packages zraka needs, and does nothing when they are all present.
-# Usage: bash tools/setup.sh [--extras]   (--extras adds Embree for the BVH benchmark and python3-venv for tools/mitsuba-setup.sh)
+# Usage: bash tools/setup.sh [--extras]   (--extras adds Embree for the BVH benchmark, python3-venv for tools/mitsuba-setup.sh and LLVM 19 for Mitsuba's llvm_ad_rgb)
 set -euo pipefail
 
 core=(build-essential cmake pkg-config
@@ -13,7 +13,7 @@ core=(build-essential cmake pkg-config
       pandoc chromium chromium-driver python3-selenium python3-pil python3-numpy
       fonts-dejavu-core fonts-dejavu-extra  # the site's pinned fonts (DejaVu Math TeX Gyre for MathML)
       clang libclang-rt-14-dev)  # clang: tools/fuzz.sh (libFuzzer), which tools/test.sh runs
-extras=(libembree-dev python3-venv)  # python3-venv: tools/mitsuba-setup.sh
+extras=(libembree-dev python3-venv libllvm19)  # python3-venv: tools/mitsuba-setup.sh; libllvm19: its llvm_ad_rgb variant
 
 want=("${core[@]}")
 [[ "${1:-}" == "--extras" ]] && want+=("${extras[@]}")
