@@ -321,16 +321,12 @@ int main(int argc, char** argv) {
         }
       }
     }
-    for (const result_t& r : results) {
-      std::string name = r.method;
-      std::replace(name.begin(), name.end(), ' ', '-');
-      r.log.write_csv(output_file("tte-" + stem + "-" + name + ".csv"));
-    }
-    for (const result_t& r : mi) {
-      std::string name = r.method;
-      std::replace(name.begin(), name.end(), ' ', '-');
-      r.log.write_csv(output_file("tte-" + stem + "-" + name + ".csv"));
-    }
+    for (const auto* rows : {&results, &mi})
+      for (const result_t& r : *rows) {
+        std::string name = r.method;
+        std::replace(name.begin(), name.end(), ' ', '-');
+        r.log.write_csv(output_file("tte-" + stem + "-" + name + ".csv"));
+      }
 
     // The summary: the fastest of zraka's methods, against each Mitsuba variant that ran.
     const result_t* best = nullptr;
@@ -341,12 +337,11 @@ int main(int argc, char** argv) {
     if (best) std::printf("; fastest: %s, %.2f s", best->method.c_str(), best_t);
     else std::printf("; no zraka method reached %.4f", target);
     for (const result_t& r : mi) {
-      const std::string name = "M" + r.method.substr(1);  // "Mitsuba scalar_rgb"
       if (const double t = seconds_to_reach(r.log, target); !std::isnan(t)) {
-        std::printf("; %s %.2f s", name.c_str(), t);
+        std::printf("; %s %.2f s", r.method.c_str(), t);
         if (best) std::printf(" (%.2fx)", t / best_t);
       } else {
-        std::printf("; %s did not reach it", name.c_str());
+        std::printf("; %s did not reach it", r.method.c_str());
       }
     }
     std::printf("; %llu NaN/inf samples in the reference\n", static_cast<unsigned long long>(bad));

@@ -635,9 +635,8 @@ float3 cone_axis(float3 d) {
 }
 float3 sample_cone(float2 u, float h_max) {
   const float h = clamp_unit(u.x) * h_max;
-  // phi = 2 pi u.y = pi v. sinpi and cospi reduce v exactly and cheaply (PoCL's sin and cos
-  // of phi spent 6 % of the Cornell box's time reducing phi), and keep the digits 2 pi's
-  // rounding in float would lose.
+  // phi = 2 pi u.y = pi v: sinpi and cospi reduce v exactly and cheaply (PoCL's sin and cos of
+  // phi spend their time reducing it; book 4.3), and keep the digits 2 pi's rounding would lose.
   const float s = sqrt(h * (2.0f - h)), v = 2.0f * clamp_unit(u.y);
   const float sin_phi = sinpi(v), cos_phi = cospi(v);
   return (float3)(s * cos_phi, s * sin_phi, 1.0f - h);

@@ -13,7 +13,8 @@
 //   distribution, not bit for bit (tests/test_realtime.cpp states the bound).
 // Triangles (meshes and lone triangles) go into one triangle BVH (triangle_bvh.hpp), whose
 // 4-wide nodes are copied as they are: they were laid out as flat arrays for SIMD already.
-// Spheres, quads and planes are tested one by one (the course's scenes have a few dozen).
+// Spheres and planes are tested one by one, quads four at a time (gpu_quad4): the course's
+// scenes have a few dozen.
 // The lights are lights.hpp's light_set_t, packed as it is: one record per light (its kind,
 // object, material, selection CDF and probability, area), the triangles of triangle and mesh
 // lights with their area CDF in a side table, and in every sphere, quad and triangle the index
