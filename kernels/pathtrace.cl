@@ -54,7 +54,7 @@
 // [listing cl-structs]
 // light: the object's index in the light table, or -1 (not a sampled light)
 typedef struct { float4 center_radius; int material, light, p1, p2; } sphere_t;
-typedef struct { float4 corner, u, v, normal_area, w; int material, light, p1, p2; } quad_t;
+typedef struct { float4 corner, u, v, normal_area; int material, light, p1, p2; } quad_t;
 typedef struct { float4 nx, ny, nz, qx, qy, qz, ux, uy, uz, vx, vy, vz, wx, wy, wz; } quad4_t;  // lane i: quad 4k+i
 typedef struct { float4 point, normal; int material, p0, p1, p2; } plane_t;
 typedef struct { float4 a, b, c; uint id; int material, light, p1; } triangle_t;

@@ -672,12 +672,13 @@ TEST_CASE("the kernel's quads four at a time: each lane is quad.hpp's test (near
   // The CPU's test on the kernel's numbers: the packed corner, edges, unit normal and w.
   std::vector<quadf> qs;
   std::vector<quad_plane_t<float>> pls;
-  for (const gpu_quad& q : g.quads) {
+  for (std::size_t j = 0; j < g.quads.size(); ++j) {
+    const gpu_quad& q = g.quads[j];
     auto v3 = [](const gpu_float4& v) { return vec3f(v.x, v.y, v.z); };
     qs.push_back(quadf{v3(q.corner), v3(q.u), v3(q.v)});
     pls.push_back(quad_plane_t<float>(qs.back()));
     pls.back().N = v3(q.normal_area);
-    pls.back().w = v3(q.w);
+    pls.back().w = float_quad_w(sc.quads[j].shape);  // what pack_scene puts in the lanes
   }
   rng r(21, 0, 0);
   auto uniform = [&](double lo, double hi) { return float(lo + (hi - lo) * r.uniform()); };

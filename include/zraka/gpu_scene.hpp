@@ -54,15 +54,14 @@ struct gpu_sphere {
   gpu_float4 center_radius;  // w: radius
   std::int32_t material, light, pad[2];
 };
-struct gpu_quad {
+struct gpu_quad {            // what a hit record and a light sample need
   gpu_float4 corner, u, v;
   gpu_float4 normal_area;  // unit normal of u x v; w: area
-  gpu_float4 w;            // quad.hpp's quad_plane_t::w, n / |n|^2 for the plane coordinates
   std::int32_t material, light, pad[2];
 };
 // Four quads lane by lane (a structure of arrays): the kernel tests them in one step of float4
-// arithmetic, each lane quad.hpp's test on gpu_quad's numbers. Lanes past the last quad are 0:
-// t = 0/0, never hit.
+// arithmetic, each lane quad.hpp's test on gpu_quad's numbers and w, quad_plane_t::w (n / |n|^2
+// for the plane coordinates). Lanes past the last quad are 0: t = 0/0, never hit.
 struct gpu_quad4 {
   gpu_float4 nx, ny, nz, qx, qy, qz, ux, uy, uz, vx, vy, vz, wx, wy, wz;
 };
@@ -132,8 +131,7 @@ struct gpu_camera {          // camera_t::prepared in float
 
 static_assert(sizeof(gpu_float4) == 16 && alignof(gpu_float4) == 16);
 static_assert(sizeof(gpu_sphere) == 32 && offsetof(gpu_sphere, material) == 16 && offsetof(gpu_sphere, light) == 20);
-static_assert(sizeof(gpu_quad) == 96 && offsetof(gpu_quad, normal_area) == 48 && offsetof(gpu_quad, w) == 64 &&
-              offsetof(gpu_quad, material) == 80);
+static_assert(sizeof(gpu_quad) == 80 && offsetof(gpu_quad, normal_area) == 48 && offsetof(gpu_quad, material) == 64);
 static_assert(sizeof(gpu_quad4) == 240 && offsetof(gpu_quad4, wz) == 224);
 static_assert(sizeof(gpu_plane) == 48 && offsetof(gpu_plane, material) == 32);
 static_assert(sizeof(gpu_triangle) == 64 && offsetof(gpu_triangle, id) == 48 &&
@@ -198,8 +196,8 @@ template <class T> vec3_t<float> float_quad_w(const parallelogram_t<T>& q) {
   return quad_plane_t<float>(parallelogram_t<float>{vec3_t<float>(q.corner), vec3_t<float>(q.u), vec3_t<float>(q.v)}).w;
 }
 
-// The quads four by four, lane i of group k quad 4k + i (gpu_quad4).
-inline std::vector<gpu_quad4> quad_groups(const std::vector<gpu_quad>& quads) {
+// The quads four by four, lane i of group k quad 4k + i (gpu_quad4); w[i]: quad i's float_quad_w.
+inline std::vector<gpu_quad4> quad_groups(const std::vector<gpu_quad>& quads, const std::vector<gpu_float4>& w) {
   auto lane = [](gpu_float4& v, std::size_t k) -> float& { return k == 0 ? v.x : k == 1 ? v.y : k == 2 ? v.z : v.w; };
   std::vector<gpu_quad4> groups((quads.size() + 3) / 4);
   for (std::size_t i = 0; i < quads.size(); ++i) {
@@ -210,7 +208,7 @@ inline std::vector<gpu_quad4> quad_groups(const std::vector<gpu_quad>& quads) {
     lane(g.qx, k) = q.corner.x, lane(g.qy, k) = q.corner.y, lane(g.qz, k) = q.corner.z;
     lane(g.ux, k) = q.u.x, lane(g.uy, k) = q.u.y, lane(g.uz, k) = q.u.z;
     lane(g.vx, k) = q.v.x, lane(g.vy, k) = q.v.y, lane(g.vz, k) = q.v.z;
-    lane(g.wx, k) = q.w.x, lane(g.wy, k) = q.w.y, lane(g.wz, k) = q.w.z;
+    lane(g.wx, k) = w[i].x, lane(g.wy, k) = w[i].y, lane(g.wz, k) = w[i].z;
   }
   return groups;
 }
@@ -394,11 +392,12 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
     g.spheres.push_back({to_gpu(s.shape.center, s.shape.radius), s.material, light_of(shape_kind::sphere, i), {0, 0}});
     note_material(s.material);
   }
+  std::vector<gpu_float4> quad_w;  // for quad_groups, once they are checked
   for (std::size_t i = 0; i < sc.quads.size(); ++i) {
     const auto& q = sc.quads[i];
     g.quads.push_back({to_gpu(q.shape.corner), to_gpu(q.shape.u), to_gpu(q.shape.v),
-                       to_gpu(q.shape.normal(), q.shape.area()), to_gpu(float_quad_w(q.shape)), q.material,
-                       light_of(shape_kind::quad, i), {0, 0}});
+                       to_gpu(q.shape.normal(), q.shape.area()), q.material, light_of(shape_kind::quad, i), {0, 0}});
+    quad_w.push_back(to_gpu(float_quad_w(q.shape)));
     note_material(q.material);
   }
   for (const auto& p : sc.planes) {
@@ -525,8 +524,9 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   };
   for (std::size_t i = 0; i < g.spheres.size(); ++i) need_finite(g.spheres[i].center_radius, "sphere " + std::to_string(i));
   for (std::size_t i = 0; i < g.quads.size(); ++i)
-    for (const auto& v : {g.quads[i].corner, g.quads[i].u, g.quads[i].v, g.quads[i].normal_area, g.quads[i].w})
+    for (const auto& v : {g.quads[i].corner, g.quads[i].u, g.quads[i].v, g.quads[i].normal_area, quad_w[i]})
       need_finite(v, "quad " + std::to_string(i));  // w: NaN where u x v underflows in float (edges ~1e-20)
+  g.quad_groups = quad_groups(g.quads, quad_w);
   for (std::size_t i = 0; i < g.planes.size(); ++i) need_finite(g.planes[i].point, "plane " + std::to_string(i));
   for (const auto& t : g.triangles)
     for (const auto& v : {t.a, t.b, t.c}) need_finite(v, "triangle " + std::to_string(t.id));
@@ -550,7 +550,6 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   g.camera = to_gpu(c.prepare());
   g.background = to_gpu(sc.background);
   f.spheres = !g.spheres.empty();
-  g.quad_groups = quad_groups(g.quads);
   f.quads = !g.quads.empty();
   f.planes = !g.planes.empty();
   f.triangles = !g.nodes.empty();
