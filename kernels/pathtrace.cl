@@ -1,6 +1,6 @@
 // The real-time path tracer (book 4.3): path.hpp's loop and lights.hpp's light module as an
-// OpenCL C 1.2 kernel, one work item per pixel. Build it after kernels/rng.cl
-// (zraka::cl::build_program_files), with the -D switches of zraka::build_options()
+// OpenCL C 1.2 kernel, one work item per pixel (or per eight pixels: PATH_LANES). Build it after
+// kernels/rng.cl (zraka::cl::build_program_files), with the -D switches of zraka::build_options()
 // (include/zraka/gpu_scene.hpp):
 //   METHOD_NAIVE | METHOD_NEE | METHOD_MIS       the algorithm (path.hpp's integrator)
 //   MAX_DEPTH=n RR_DEPTH=n                       bounces; Russian roulette from bounce n on
@@ -14,6 +14,7 @@
 //   HAS_ENVIRONMENT the environment light (environment.hpp): seen by rays that leave, sampled
 //   HAS_SPHERE_LIGHTS HAS_QUAD_LIGHTS HAS_TRIANGLE_LIGHTS HAS_POINT_LIGHTS   which lights are sampled
 //   HAS_THIN_LENS   the camera has an aperture   WEAK_SEED   the thesis's per-pixel seed (C7)
+//   PATH_LANES      eight paths per work item in float8 lanes, for the scenes that loop covers
 // Code for a feature the scene does not use is not compiled at all.
 //
 // What changed from the CPU code: no recursion, no pointers between objects (indices into flat
@@ -1513,10 +1514,569 @@ uchar srgb_byte(float c, global const float* steps) {
 }
 // [end]
 
+#ifdef PATH_LANES
+// ---------------------------------------------------------------- eight paths in SIMD lanes
+// PoCL runs one work item at a time on a core and does not put several of them in SIMD lanes
+// (the path loop branches), so the loop above uses SIMD only inside a test. Here one work item
+// follows eight paths, one per lane of float8 arithmetic: pixels x0 .. x0 + 7 of a row, each
+// lane its pixel's samples in order. Every line is the loop's line above for eight paths at once;
+// where their paths differ (glass or a wall, a light sample or none), masks choose each lane's
+// result. Built instead of the loop above when the scene has only what these lines cover
+// (gpu_scene.hpp's lanes_cover): spheres, quads, Lambert without a texture, glass, emitters and
+// quad lights.
+#if defined(HAS_PLANES) || defined(HAS_TRIANGLES) || defined(HAS_METAL) || defined(HAS_PHONG) || \
+    defined(HAS_CHECKER) || defined(HAS_MICROFACETS) || defined(HAS_TEXTURES) || defined(HAS_ENVIRONMENT) || \
+    defined(HAS_SPHERE_LIGHTS) || defined(HAS_TRIANGLE_LIGHTS) || defined(HAS_POINT_LIGHTS) || defined(WEAK_SEED)
+#error "PATH_LANES covers spheres, quads, Lambert, glass, emitters and quad lights only (gpu_scene.hpp's lanes_cover)"
+#endif
+#define LANES 8
+typedef int8 mask8;  // -1 in the lanes where a condition holds
+typedef struct { float8 x, y, z; } vec8;  // eight float3, one per lane
+
+vec8 vec8_of(float8 x, float8 y, float8 z) { vec8 r; r.x = x; r.y = y; r.z = z; return r; }
+vec8 splat8(float3 a) { return vec8_of((float8)(a.x), (float8)(a.y), (float8)(a.z)); }
+vec8 add8(vec8 a, vec8 b) { return vec8_of(a.x + b.x, a.y + b.y, a.z + b.z); }
+vec8 sub8(vec8 a, vec8 b) { return vec8_of(a.x - b.x, a.y - b.y, a.z - b.z); }
+vec8 mul8(vec8 a, vec8 b) { return vec8_of(a.x * b.x, a.y * b.y, a.z * b.z); }
+vec8 scale8(vec8 a, float8 s) { return vec8_of(a.x * s, a.y * s, a.z * s); }
+vec8 div8(vec8 a, float8 s) { return vec8_of(a.x / s, a.y / s, a.z / s); }
+vec8 neg8(vec8 a) { return vec8_of(-a.x, -a.y, -a.z); }
+vec8 abs8(vec8 a) { return vec8_of(fabs(a.x), fabs(a.y), fabs(a.z)); }
+float8 dot8(vec8 a, vec8 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+vec8 pick8(vec8 a, vec8 b, mask8 m) { return vec8_of(select(a.x, b.x, m), select(a.y, b.y, m), select(a.z, b.z, m)); }
+mask8 nonzero8(vec8 a) { return (a.x != 0.0f) | (a.y != 0.0f) | (a.z != 0.0f); }
+mask8 finite8(vec8 a) { return isfinite(a.x) & isfinite(a.y) & isfinite(a.z); }
+
+// normalize_or_zero, lane by lane (the rescaled branch only when some lane needs it)
+vec8 normalize_or_zero8(vec8 v) {
+  const float8 d = dot8(v, v);
+  const mask8 common = (d >= 0x1p-60f) & (d <= 0x1p60f);
+  const vec8 r = div8(v, sqrt(d));
+  if (all(common)) return r;
+  const float8 m = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
+  const vec8 s = div8(v, m);
+  const vec8 rescaled = pick8(splat8((float3)(0.0f)), div8(s, sqrt(dot8(s, s))), finite8(v) & (m > 0.0f));
+  return pick8(rescaled, r, common);
+}
+
+// rng.cl's stream in lanes: each lane its own (pixel, sample) key and its own count of draws.
+typedef struct { uint8 key_pixel, key_sample, dimension; } stream8_t;
+uint8 pcg_hash8(uint8 v) {
+  const uint8 state = v * 747796405u + 2891336453u;
+  const uint8 word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+// uniform() in the lanes of m; the others' streams do not move.
+float8 uniform8(stream8_t* r, mask8 m) {
+  const uint8 h = r->key_sample;
+  const uint8 word = pcg_hash8(h ^ (r->dimension + 0x9e3779b9u + (h << 6) + (h >> 2)));
+  const uint8 hi = pcg_hash8(r->key_pixel ^ word);
+  r->dimension += select((uint8)(0u), (uint8)(2u), as_uint8(m));
+  return convert_float8(hi >> 8) * 0x1p-24f;
+}
+
+float8 clamp_unit8(float8 u) { return clamp(u, 0.0f, 0x1.fffffep-1f); }
+float8 nudge8(float8 x, float8 off) {
+  return select(select(x, nextafter(x, (float8)(-INFINITY)), off < 0.0f), nextafter(x, (float8)(INFINITY)), off > 0.0f);
+}
+vec8 offset_origin8(vec8 p, vec8 p_error, vec8 n, vec8 w) {
+  const float8 d = dot8(abs8(n), p_error);
+  vec8 off = scale8(n, d);
+  off = pick8(off, neg8(off), dot8(w, n) < 0.0f);
+  const vec8 po = add8(p, off);
+  return vec8_of(nudge8(po.x, off.x), nudge8(po.y, off.y), nudge8(po.z, off.z));
+}
+
+#ifdef HAS_QUADS
+#pragma OPENCL FP_CONTRACT OFF
+// [listing cl-quad8]
+// quad4_roots for quad j of group g (its numbers the same in every lane) and eight rays.
+mask8 quad8_roots(global const quad4_t* g, int j, vec8 o, vec8 D, float8 t_max, float8* t_out, float8* a_out,
+                  float8* b_out) {
+  global const float* q = (global const float*)g + j;  // field f of lane j: q[4 f]
+  const float nx = q[0], ny = q[4], nz = q[8], qx = q[12], qy = q[16], qz = q[20];
+  const float ux = q[24], uy = q[28], uz = q[32], vx = q[36], vy = q[40], vz = q[44];
+  const float wx = q[48], wy = q[52], wz = q[56];
+  const float8 denom = nx * D.x + ny * D.y + nz * D.z;
+  const float8 qox = qx - o.x, qoy = qy - o.y, qoz = qz - o.z;
+  const float8 s = nx * qox + ny * qoy + nz * qoz;
+  const float8 t = s / denom;
+  mask8 hit = (t > 0.0f) & (t < t_max);
+  const float nax = fabs(nx), nay = fabs(ny), naz = fabs(nz);
+  hit &= fabs(denom) > GAMMA(3) * (nax * fabs(D.x) + nay * fabs(D.y) + naz * fabs(D.z));  // parallel
+  const float8 s_error = GAMMA(4) * (nax * (fabs(qx) + fabs(o.x)) + nay * (fabs(qy) + fabs(o.y)) +
+                                     naz * (fabs(qz) + fabs(o.z))) +
+                         GAMMA(4) * sqrt(qox * qox + qoy * qoy + qoz * qoz);
+  hit &= fabs(s) > s_error;  // the origin on the plane
+  const float8 dx = (o.x + t * D.x) - qx, dy = (o.y + t * D.y) - qy, dz = (o.z + t * D.z) - qz;
+  const float8 a = wx * (dy * vz - dz * vy) + wy * (dz * vx - dx * vz) + wz * (dx * vy - dy * vx);
+  const float8 b = wx * (uy * dz - uz * dy) + wy * (uz * dx - ux * dz) + wz * (ux * dy - uy * dx);
+  hit &= (a >= 0.0f) & (a <= 1.0f) & (b >= 0.0f) & (b <= 1.0f);
+  *t_out = t;
+  *a_out = a;
+  *b_out = b;
+  return hit;
+}
+// [end]
+#pragma OPENCL FP_CONTRACT ON
+#endif
+
+#ifdef HAS_SPHERES
+// hit_sphere's root for eight rays: the lanes that meet sphere s with t in (0, t_max), their t,
+// and whether it is the nearer root (the record's fallback direction needs it).
+mask8 sphere8_root(const sphere_t s, vec8 o, vec8 D, float8 t_max, float8* t_out, mask8* nearer) {
+  const vec8 c = splat8(s.center_radius.xyz);
+  const float r = s.center_radius.w;
+  const vec8 f = sub8(o, c);
+  const float8 a = dot8(D, D);
+  const float8 b = dot8(f, D);
+  const float8 cc = dot8(f, f) - r * r;
+  const vec8 l = sub8(f, scale8(D, b / a));  // centre-to-line offset: no cancellation in the discriminant
+  const float8 ll = sqrt(dot8(l, l));
+  const float8 disc = a * (r - ll) * (r + ll);
+  const float8 q = -(b + copysign(sqrt(disc), b));
+  const float8 r0 = cc / q, r1 = q / a;
+  const mask8 swap = r0 > r1;
+  const float8 t0 = select(r0, r1, swap), t1 = select(r1, r0, swap);
+  const mask8 in0 = (t0 > 0.0f) & (t0 < t_max), in1 = (t1 > 0.0f) & (t1 < t_max);
+  *t_out = select(t1, t0, in0);
+  *nearer = in0;
+  return (a > 0.0f) & (disc >= 0.0f) & (in0 | in1);
+}
+#endif
+
+// Eight hit records: hit_t with a lane for each field.
+typedef struct {
+  float8 t;
+  vec8 p, p_error, normal;  // normal: unit, outward
+  mask8 front_face;
+  int8 material, light;
+} hit8_t;
+
+// [listing cl-nearest8]
+// nearest_hit for the rays in the lanes of `live`: every sphere and quad tested in all eight
+// lanes at once (a shape's numbers are the same in every lane), then each lane's record from the
+// shape it hit nearest, as hit_sphere and quad_hit make it. The lanes that hit something.
+mask8 nearest_hit8(const scene_t* sc, vec8 o, vec8 D, mask8 live, hit8_t* h) {
+  float8 t_max = (float8)(INFINITY), ab = (float8)(0.0f), bb = (float8)(0.0f);
+  int8 kind = (int8)(0), which = (int8)(-1);  // kind 1: a sphere, 2: a quad
+  mask8 nearer = (mask8)(0);
+#ifdef HAS_SPHERES
+  for (int i = 0; i < sc->n_spheres; ++i) {
+    float8 t;
+    mask8 n0;
+    const mask8 hit = sphere8_root(sc->spheres[i], o, D, t_max, &t, &n0) & live;
+    t_max = select(t_max, t, hit);
+    nearer = select(nearer, n0, hit);
+    kind = select(kind, (int8)(1), hit);
+    which = select(which, (int8)(i), hit);
+  }
+#endif
+#ifdef HAS_QUADS
+  for (int i = 0; i < sc->n_quads; ++i) {
+    float8 t, a, b;
+    const mask8 hit = quad8_roots(&sc->quad_groups[i / 4], i % 4, o, D, t_max, &t, &a, &b) & live;
+    t_max = select(t_max, t, hit);
+    ab = select(ab, a, hit);
+    bb = select(bb, b, hit);
+    kind = select(kind, (int8)(2), hit);
+    which = select(which, (int8)(i), hit);
+  }
+#endif
+  h->t = t_max;
+  h->p = h->p_error = h->normal = splat8((float3)(0.0f));
+  h->material = h->light = (int8)(-1);
+#ifdef HAS_SPHERES
+  for (int i = 0; i < sc->n_spheres; ++i) {
+    const mask8 m = (kind == 1) & (which == i);
+    if (!any(m)) continue;
+    const sphere_t s = sc->spheres[i];
+    const vec8 c = splat8(s.center_radius.xyz);
+    const float r = s.center_radius.w;
+    vec8 radial = add8(sub8(o, c), scale8(D, t_max));
+    const float8 len = sqrt(dot8(radial, radial));
+    radial = pick8(radial, pick8(D, neg8(D), nearer), !(len > 0.0f) | !isfinite(len));
+    const vec8 on = scale8(radial, r / sqrt(dot8(radial, radial)));
+    const vec8 p = add8(c, on);
+    h->p = pick8(h->p, p, m);
+    h->p_error = pick8(h->p_error, scale8(add8(abs8(on), abs8(p)), (float8)(GAMMA(6))), m);
+    h->normal = pick8(h->normal, div8(on, (float8)(r)), m);
+    h->material = select(h->material, (int8)(s.material), m);
+    h->light = select(h->light, (int8)(s.light), m);
+  }
+#endif
+#ifdef HAS_QUADS
+  for (int i = 0; i < sc->n_quads; ++i) {
+    const mask8 m = (kind == 2) & (which == i);
+    if (!any(m)) continue;
+    const quad_t q = sc->quads[i];
+    const vec8 Q = splat8(q.corner.xyz), au = scale8(splat8(q.u.xyz), ab), bv = scale8(splat8(q.v.xyz), bb);
+    h->p = pick8(h->p, add8(add8(Q, au), bv), m);
+    h->p_error = pick8(h->p_error, scale8(add8(add8(abs8(Q), abs8(au)), abs8(bv)), (float8)(GAMMA(4))), m);
+    h->normal = pick8(h->normal, splat8(q.normal_area.xyz), m);
+    h->material = select(h->material, (int8)(q.material), m);
+    h->light = select(h->light, (int8)(q.light), m);
+  }
+#endif
+  h->front_face = dot8(D, h->normal) < 0.0f;
+  return kind != 0;
+}
+
+// occluded for the segments in the lanes of `live`: the lanes whose segment is blocked.
+mask8 occluded8(const scene_t* sc, vec8 o, vec8 D, float8 t_max, mask8 live) {
+  mask8 blocked = (mask8)(0);
+#ifdef HAS_SPHERES
+  for (int i = 0; i < sc->n_spheres; ++i) {
+    float8 t;
+    mask8 n0;
+    blocked |= sphere8_root(sc->spheres[i], o, D, t_max, &t, &n0);
+  }
+#endif
+#ifdef HAS_QUADS
+  for (int i = 0; i < sc->n_quads; ++i) {
+    float8 t, a, b;
+    blocked |= quad8_roots(&sc->quad_groups[i / 4], i % 4, o, D, t_max, &t, &a, &b);
+  }
+#endif
+  return blocked & live;
+}
+// [end]
+
+float8 power_heuristic8(float8 a, float8 b) {
+  const float8 r = b / a;
+  return select(select(1.0f / (1.0f + r * r), (float8)(1.0f), isinf(a)), (float8)(0.0f), !(a > 0.0f));
+}
+
+// A material's numbers in each lane (the lane's own material: a gather, lane by lane).
+typedef struct {
+  int8 kind;
+  vec8 albedo, radiance;
+  mask8 two_sided;
+  float8 ior;
+} material8_t;
+material8_t materials8(global const material_t* materials, int8 index) {
+  int mi[LANES], kind[LANES], two[LANES];
+  float ax[LANES], ay[LANES], az[LANES], rx[LANES], ry[LANES], rz[LANES], ior[LANES];
+  vstore8(index, 0, mi);
+  for (int k = 0; k < LANES; ++k) {
+    global const material_t* m = &materials[max(mi[k], 0)];  // -1: a lane that hit nothing
+    kind[k] = m->kind;
+    two[k] = m->two_sided ? -1 : 0;
+    ax[k] = m->albedo_a.x, ay[k] = m->albedo_a.y, az[k] = m->albedo_a.z;
+    rx[k] = m->radiance.x, ry[k] = m->radiance.y, rz[k] = m->radiance.z;
+    ior[k] = m->ior;
+  }
+  material8_t r;
+  r.kind = vload8(0, kind);
+  r.two_sided = vload8(0, two);
+  r.albedo = vec8_of(vload8(0, ax), vload8(0, ay), vload8(0, az));
+  r.radiance = vec8_of(vload8(0, rx), vload8(0, ry), vload8(0, rz));
+  r.ior = vload8(0, ior);
+  return r;
+}
+
+#ifdef HAS_QUAD_LIGHTS
+// A quad light's numbers in each lane, for light index `which` (-1: none; lane 0's light then).
+typedef struct {
+  vec8 corner, u, v, normal, radiance;
+  float8 inv_area, pdf;
+  mask8 two_sided;
+} light8_t;
+light8_t lights8(const scene_t* sc, int8 which) {
+  light8_t r;
+  r.corner = r.u = r.v = r.normal = r.radiance = splat8((float3)(0.0f));
+  r.inv_area = r.pdf = (float8)(0.0f);
+  r.two_sided = (mask8)(0);
+  for (int i = 0; i < sc->n_lights; ++i) {
+    const mask8 m = which == i;
+    if (!any(m)) continue;
+    global const light_t* l = &sc->lights[i];
+    const quad_t q = sc->quads[l->object];
+    global const material_t* e = &sc->materials[l->material];
+    r.corner = pick8(r.corner, splat8(q.corner.xyz), m);
+    r.u = pick8(r.u, splat8(q.u.xyz), m);
+    r.v = pick8(r.v, splat8(q.v.xyz), m);
+    r.normal = pick8(r.normal, splat8(q.normal_area.xyz), m);
+    r.radiance = pick8(r.radiance, splat8(e->radiance.xyz), m);
+    r.two_sided = select(r.two_sided, (mask8)(e->two_sided ? -1 : 0), m);
+    r.inv_area = select(r.inv_area, (float8)(1.0f / l->area), m);
+    r.pdf = select(r.pdf, (float8)(l->pdf), m);
+  }
+  return r;
+}
+#endif
+
+// The state of eight paths between their bounces.
+typedef struct {
+  vec8 o, D;                     // the ray each lane traces next
+  vec8 L, beta, from;
+  float8 bsdf_pdf;
+  mask8 specular;
+  int8 bounce;
+  stream8_t g;
+} paths8_t;
+
+// [listing cl-path8]
+// One bounce of path_radiance for the paths in the lanes of `live`: the lanes that go on.
+mask8 path_step8(const scene_t* sc, paths8_t* P, mask8 live) {
+  const bool nee = NEE_ON, mis = MIS_ON;
+  hit8_t h;
+  const mask8 found = nearest_hit8(sc, P->o, P->D, live, &h);
+  P->L = pick8(P->L, add8(P->L, mul8(P->beta, splat8(sc->background))), live & ~found);
+  mask8 going = live & found;
+  const material8_t m = materials8(sc->materials, h.material);
+#ifdef HAS_EMITTERS
+  const vec8 Le = pick8(splat8((float3)(0.0f)), m.radiance, h.front_face | m.two_sided);
+  const mask8 glows = going & nonzero8(Le);
+  if (any(glows)) {
+    float8 w = (float8)(1.0f);
+#ifdef HAS_QUAD_LIGHTS
+    if (nee && mis) {  // light_pdf: the light's area density, turned into solid angle
+      const light8_t l = lights8(sc, select(h.light, (int8)(-1), ~glows));
+      const float8 c = fabs(dot8(h.normal, P->D));
+      const float8 pdf = select((float8)(0.0f), l.inv_area * (h.t * h.t) / c, c > 0.0f) * l.pdf;
+      w = select(power_heuristic8(P->bsdf_pdf, pdf), w, P->specular | (h.light < 0));
+    }
+#endif
+    // All of it, its MIS share, or none (nee: the light sample at the previous hit counted it).
+    const mask8 counted = !nee || mis ? glows : glows & (P->specular | (h.light < 0));
+    P->L = pick8(P->L, add8(P->L, scale8(mul8(P->beta, Le), w)), counted);
+  }
+#endif
+  going &= P->bounce != MAX_DEPTH;
+  const vec8 n = pick8(neg8(h.normal), h.normal, h.front_face);  // facing: the side the ray came from
+  const vec8 wo = neg8(P->D);
+  const mask8 diffuse = going & (m.kind == KIND_LAMBERTIAN);
+  // The next event: a point on a light, its share added if the shadow segment is clear.
+  vec8 share = splat8((float3)(0.0f)), so = share, sd = share;
+  float8 st = (float8)(0.0f);
+  mask8 lit = (mask8)(0);
+  if (nee && any(diffuse)) {
+    const float8 u_select = uniform8(&P->g, diffuse);  // drawn with or without a light to sample
+    const float8 ua = uniform8(&P->g, diffuse), ub = uniform8(&P->g, diffuse);
+#ifndef HAS_QUAD_LIGHTS
+    (void)u_select, (void)ua, (void)ub;
+#else
+    const float8 x = clamp_unit8(u_select) * sc->lights[sc->n_lights - 1].cdf;
+    int8 which = (int8)(0);  // upper_bound: the lights whose CDF is at or below x come before
+    for (int i = 0; i + 1 < sc->n_lights; ++i) which += select((int8)(0), (int8)(1), (float8)(sc->lights[i].cdf) <= x);
+    const light8_t l = lights8(sc, which);
+    const float8 a = clamp_unit8(ua), b = clamp_unit8(ub);
+    const vec8 au = scale8(l.u, a), bv = scale8(l.v, b);
+    const vec8 p = add8(add8(l.corner, au), bv);
+    const vec8 p_error = scale8(add8(add8(abs8(l.corner), abs8(au)), abs8(bv)), (float8)(GAMMA(4)));
+    const vec8 to = sub8(p, h.p);
+    const vec8 wi = normalize_or_zero8(to);
+    const float8 cos_l = fabs(dot8(l.normal, wi));
+    const float8 pdf = select((float8)(0.0f), l.inv_area * dot8(to, to) / cos_l, cos_l > 0.0f) * l.pdf;
+    so = offset_origin8(h.p, h.p_error, h.normal, to);  // spawn_segment
+    const vec8 d = sub8(p, so);
+    sd = normalize_or_zero8(d);
+    st = sqrt(dot8(d, d)) * (1.0f - GAMMA(16)) - dot8(abs8(l.normal), p_error) / fmax(cos_l, 1e-30f);
+    const vec8 e_Le = pick8(splat8((float3)(0.0f)), l.radiance, (dot8(wi, l.normal) < 0.0f) | l.two_sided);
+    const float8 cos_i = dot8(wi, n);
+    const mask8 same = (cos_i > 0.0f) & (dot8(wo, n) > 0.0f);
+    const vec8 f_cos = scale8(pick8(splat8((float3)(0.0f)), div8(m.albedo, (float8)(PI_F)), same), fmax(0.0f, cos_i));
+    const float8 w = mis ? power_heuristic8(pdf, select((float8)(0.0f), cos_i / PI_F, same & (cos_i > 0.0f)))
+                         : (float8)(1.0f);
+    share = scale8(mul8(mul8(P->beta, f_cos), e_Le), w / pdf);
+    lit = diffuse & (pdf > 0.0f) & isfinite(pdf) & nonzero8(wi) & nonzero8(e_Le) & nonzero8(f_cos);
+#endif
+  }
+  // scatter(): Lambert samples the cosine (three numbers, the third for a lobe it does not have)
+  vec8 dir = P->D, weight = splat8((float3)(1.0f));
+  float8 pdf = (float8)(0.0f);
+  if (any(diffuse)) {
+    const float8 u0 = clamp_unit8(uniform8(&P->g, diffuse)), u1 = uniform8(&P->g, diffuse);
+    (void)uniform8(&P->g, diffuse);
+    const float8 s = sqrt(u0), v = 2.0f * clamp_unit8(u1);
+    const float8 lx = s * cospi(v), ly = s * sinpi(v), lz = sqrt(1.0f - u0);
+    const float8 sign = copysign((float8)(1.0f), n.z);  // onb(n)
+    const float8 a = -1.0f / (sign + n.z);
+    const float8 c = n.x * n.y * a;
+    const vec8 t = vec8_of(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+    const vec8 b = vec8_of(c, sign + n.y * n.y * a, -n.y);
+    const vec8 w = add8(add8(scale8(t, lx), scale8(b, ly)), scale8(n, lz));
+    const float8 cos_w = dot8(w, n);
+    const float8 p = select((float8)(0.0f), cos_w / PI_F, cos_w > 0.0f);
+    going &= ~diffuse | ((dot8(wo, n) > 0.0f) & (p > 0.0f));  // grazing, or on the horizon: absorbed
+    dir = pick8(dir, w, diffuse);
+    weight = pick8(weight, m.albedo, diffuse);
+    pdf = select(pdf, p, diffuse);
+  }
+#ifdef HAS_DIELECTRIC
+  const mask8 glass = going & (m.kind == KIND_DIELECTRIC);
+  if (any(glass)) {  // refract_dir, then reflect with probability R (exact Fresnel)
+    const float8 eta = select(m.ior, 1.0f / m.ior, h.front_face);
+    const float8 cos_i = clamp(-dot8(P->D, n), 0.0f, 1.0f);
+    const vec8 d_perp = add8(P->D, scale8(n, cos_i));
+    const float8 lo = (1.0f - eta) * (1.0f + eta) + (eta * cos_i) * (eta * cos_i);  // cos2_transmitted, eta <= 1
+    const float8 c2 = select(lo, 1.0f - eta * eta * dot8(d_perp, d_perp), eta > 1.0f);
+    const mask8 can = c2 >= 0.0f;
+    const vec8 t = normalize_or_zero8(sub8(scale8(d_perp, eta), scale8(n, sqrt(fmax(c2, 0.0f)))));
+    const float8 u = uniform8(&P->g, glass & can);
+    const float8 f2 = select(lo, 1.0f - eta * eta * ((1.0f - cos_i) * (1.0f + cos_i)), eta > 1.0f);
+    const float8 ct = sqrt(fmax(f2, 0.0f));
+    const float8 r_s = (eta * cos_i - ct) / (eta * cos_i + ct), r_p = (cos_i - eta * ct) / (cos_i + eta * ct);
+    float8 R = clamp((r_s * r_s + r_p * r_p) / 2.0f, 0.0f, 1.0f);
+    R = select(select(R, (float8)(1.0f), f2 <= 0.0f), (float8)(0.0f), eta == 1.0f);
+    const vec8 reflected = sub8(P->D, scale8(n, 2.0f * dot8(P->D, n)));
+    dir = pick8(dir, pick8(reflected, t, can & (u >= R)), glass);
+  }
+  going &= diffuse | glass;  // an emitter (or anything else) absorbs
+#else
+  going &= diffuse;
+#endif
+  P->beta = pick8(P->beta, mul8(P->beta, weight), going);
+  P->specular = select(P->specular, ~diffuse, going);
+  P->bsdf_pdf = select(P->bsdf_pdf, pdf, going);
+  P->from = pick8(P->from, h.p, going);
+  const mask8 rr = going & (P->bounce >= RR_DEPTH);  // survives_roulette
+  if (any(rr)) {
+    const float8 q = fmin(1.0f, fmax(P->beta.x, fmax(P->beta.y, P->beta.z)));
+    going &= ~rr | (uniform8(&P->g, rr) < q);
+    P->beta = pick8(P->beta, div8(P->beta, q), rr & going);
+  }
+  P->o = pick8(P->o, offset_origin8(h.p, h.p_error, h.normal, dir), going);
+  P->D = pick8(P->D, dir, going);
+  P->bounce = select(P->bounce, P->bounce + 1, going);
+  if (any(lit)) P->L = pick8(P->L, add8(P->L, share), lit & ~occluded8(sc, so, sd, st, lit));
+  return going;
+}
+// [end]
+#endif
+
+// Where a launch's samples go: the kernel's image arguments.
+typedef struct {
+  global float4* accum;
+  global float4* accum_sq;
+  global uchar4* display;
+  global const float* srgb_steps;
+  uint width, height, sample_offset, samples;
+} image_t;
+
+// Adds pixel (x, y)'s sums of this launch to accum and accum_sq (sum.w: the samples that were
+// finite) and writes its running mean as sRGB bytes, bottom row first as OpenGL stores textures.
+void store_pixel(const image_t* im, uint x, uint y, float4 sum, float4 sum_sq) {
+  const uint i = y * im->width + x;
+  const float4 total = im->sample_offset == 0 ? sum : im->accum[i] + sum;
+  im->accum[i] = total;
+  im->accum_sq[i] = im->sample_offset == 0 ? sum_sq : im->accum_sq[i] + sum_sq;
+  const float3 mean = total.xyz / fmax(total.w, 1.0f);
+  global const float* steps = im->srgb_steps;
+  im->display[(im->height - 1 - y) * im->width + x] =
+      (uchar4)(srgb_byte(mean.x, steps), srgb_byte(mean.y, steps), srgb_byte(mean.z, steps), 255);
+}
+
+#ifndef PATH_LANES
+// [listing cl-render-pixel]
+// One work item per pixel: its samples one after the other.
+void render_pixel(const scene_t* sc, global const camera_t* camera, const image_t* im, ulong seed) {
+  const uint x = get_global_id(0), y = get_global_id(1);
+  if (x >= im->width || y >= im->height) return;
+  const camera_t cam = *camera;
+  float4 sum = (float4)(0.0f), sum_sq = (float4)(0.0f);  // sum.w: samples that were finite
+#ifdef WEAK_SEED
+  stream_t g = stream_make(seed, x, y, im->width, 0);  // one stream for the pixel, every frame the same
+#endif
+  for (uint s = im->sample_offset; s < im->sample_offset + im->samples; ++s) {
+#ifndef WEAK_SEED
+    stream_t g = stream_make(seed, x, y, im->width, s);
+#endif
+    const float sx = ((float)x + uniform(&g)) / (float)im->width;
+    const float sy = ((float)y + uniform(&g)) / (float)im->height;
+    const float3 target = cam.corner.xyz + sx * cam.horizontal.xyz + sy * cam.vertical.xyz;
+    float3 o = cam.origin.xyz;
+#ifdef HAS_THIN_LENS
+    if (cam.lens_radius > 0.0f) {
+      const float r = cam.lens_radius * sqrt(uniform(&g)), phi = 2.0f * PI_F * uniform(&g);
+      o += r * cos(phi) * cam.u.xyz + r * sin(phi) * cam.v.xyz;
+    }
+#endif
+    const float3 c = path_radiance(sc, o, normalize(target - o), &g);
+    if (isfinite(c.x) && isfinite(c.y) && isfinite(c.z)) {  // render.hpp drops NaN
+      sum += (float4)(c, 1.0f);
+      sum_sq += (float4)(c * c, 0.0f);
+    }
+  }
+  store_pixel(im, x, y, sum, sum_sq);
+}
+// [end]
+#else
+// [listing cl-render-lanes]
+// One work item, eight pixels of a row (x0 .. x0 + 7), one per lane. A lane whose path ends
+// starts its pixel's next sample at once, so the lanes stay busy until the last pixel is done.
+void render_lanes(const scene_t* sc, global const camera_t* camera, const image_t* im, ulong seed) {
+  const uint x0 = get_global_id(0) * LANES, y = get_global_id(1);
+  if (x0 >= im->width || y >= im->height) return;
+  const camera_t cam = *camera;
+  const uint8 x = (uint8)(x0) + (uint8)(0, 1, 2, 3, 4, 5, 6, 7);
+  const uint end = im->sample_offset + im->samples;
+  mask8 live = (x < (uint8)(im->width)) & (mask8)(im->samples > 0 ? -1 : 0);
+  mask8 starting = live;
+  uint8 next = (uint8)(im->sample_offset);  // each lane's next sample
+  paths8_t P;
+  P.o = P.D = P.L = P.beta = P.from = splat8((float3)(0.0f));
+  P.bsdf_pdf = (float8)(0.0f);
+  P.specular = (mask8)(0);
+  P.bounce = (int8)(0);
+  const uint seed_key = seed_word(seed);  // rng_make's keys, in lanes
+  P.g.key_pixel = pcg_hash8(y * im->width + x + seed_key);
+  P.g.key_sample = P.g.dimension = (uint8)(0u);
+  const uint sample_key = pcg_hash(seed_key ^ 0x5bd1e995u);
+  vec8 sum = splat8((float3)(0.0f)), sum_sq = sum;
+  float8 finite = (float8)(0.0f);  // samples that were finite
+  while (any(live)) {
+    if (any(starting)) {  // the camera ray of each starting lane's next sample
+      P.g.key_sample = select(P.g.key_sample, pcg_hash8(next + sample_key), starting);
+      P.g.dimension = select(P.g.dimension, (uint8)(0u), starting);
+      next = select(next, next + 1u, starting);
+      const float8 sx = (convert_float8(x) + uniform8(&P.g, starting)) / (float)im->width;
+      const float8 sy = ((float)y + uniform8(&P.g, starting)) / (float)im->height;
+      const vec8 target = add8(add8(splat8(cam.corner.xyz), scale8(splat8(cam.horizontal.xyz), sx)),
+                               scale8(splat8(cam.vertical.xyz), sy));
+      vec8 o = splat8(cam.origin.xyz);
+#ifdef HAS_THIN_LENS
+      if (cam.lens_radius > 0.0f) {
+        const float8 r = cam.lens_radius * sqrt(uniform8(&P.g, starting));
+        const float8 phi = 2.0f * PI_F * uniform8(&P.g, starting);
+        o = add8(o, add8(scale8(splat8(cam.u.xyz), r * cos(phi)), scale8(splat8(cam.v.xyz), r * sin(phi))));
+      }
+#endif
+      P.o = pick8(P.o, o, starting);
+      P.D = pick8(P.D, normalize_or_zero8(sub8(target, o)), starting);
+      P.L = pick8(P.L, splat8((float3)(0.0f)), starting);
+      P.beta = pick8(P.beta, splat8((float3)(1.0f)), starting);
+      P.from = pick8(P.from, splat8((float3)(0.0f)), starting);
+      P.specular |= starting;  // camera rays count as specular
+      P.bsdf_pdf = select(P.bsdf_pdf, (float8)(0.0f), starting);
+      P.bounce = select(P.bounce, (int8)(0), starting);
+    }
+    const mask8 ended = live & ~path_step8(sc, &P, live);
+    starting = (mask8)(0);
+    if (!any(ended)) continue;
+    const mask8 counted = ended & finite8(P.L);  // render.hpp drops NaN
+    sum = pick8(sum, add8(sum, P.L), counted);
+    sum_sq = pick8(sum_sq, add8(sum_sq, mul8(P.L, P.L)), counted);
+    finite = select(finite, finite + 1.0f, counted);
+    starting = ended & (next < (uint8)(end));
+    live &= ~ended | starting;
+  }
+  float s[4][LANES];
+  vstore8(sum.x, 0, s[0]), vstore8(sum.y, 0, s[1]), vstore8(sum.z, 0, s[2]), vstore8(finite, 0, s[3]);
+  float q[3][LANES];
+  vstore8(sum_sq.x, 0, q[0]), vstore8(sum_sq.y, 0, q[1]), vstore8(sum_sq.z, 0, q[2]);
+  for (uint k = 0; k < LANES && x0 + k < im->width; ++k)
+    store_pixel(im, x0 + k, y, (float4)(s[0][k], s[1][k], s[2][k], s[3][k]), (float4)(q[0][k], q[1][k], q[2][k], 0.0f));
+}
+// [end]
+#endif
+
 // [listing cl-kernel]
 // Adds `samples` samples (indices sample_offset, sample_offset + 1, ...) to each pixel's sum in
 // accum and their squares to accum_sq (sample_offset 0: starts both afresh), and writes the
 // running mean as sRGB bytes for display, bottom row first as OpenGL textures are stored.
+// (With PATH_LANES a work item renders pixels 8 x .. 8 x + 7 of row y: see render_lanes.)
 kernel void render(global const sphere_t* spheres, global const quad_t* quads,
                    global const quad4_t* quad_groups, global const plane_t* planes, global const triangle_t* tris,
                    global const node4_t* nodes, global const material_t* materials,
@@ -1528,8 +2088,6 @@ kernel void render(global const sphere_t* spheres, global const quad_t* quads,
                    global const float4* tri_uvs, int has_tri_uvs, global const environment_t* env,
                    global const float* env_tables, global const int* noise_permutation,
                    global const float* srgb_steps) {
-  const uint x = get_global_id(0), y = get_global_id(1);
-  if (x >= width || y >= height) return;
   scene_t sc = {spheres, quads, quad_groups, planes, tris, nodes, materials, lights, light_tris,
                 n_spheres, n_quads, n_planes, n_lights, n_nodes, background.xyz};
 #ifdef HAS_TEXTURES
@@ -1547,38 +2105,12 @@ kernel void render(global const sphere_t* spheres, global const quad_t* quads,
   sc.env = env;
   sc.env_tables = env_tables;
 #endif
-  const camera_t cam = *camera;
-  float4 sum = (float4)(0.0f), sum_sq = (float4)(0.0f);  // sum.w: samples that were finite
-#ifdef WEAK_SEED
-  stream_t g = stream_make(seed, x, y, width, 0);  // one stream for the pixel, every frame the same
+  const image_t img = {accum, accum_sq, display, srgb_steps, width, height, sample_offset, samples};
+#ifdef PATH_LANES
+  render_lanes(&sc, camera, &img, seed);
+#else
+  render_pixel(&sc, camera, &img, seed);
 #endif
-  for (uint s = sample_offset; s < sample_offset + samples; ++s) {
-#ifndef WEAK_SEED
-    stream_t g = stream_make(seed, x, y, width, s);
-#endif
-    const float sx = ((float)x + uniform(&g)) / (float)width;
-    const float sy = ((float)y + uniform(&g)) / (float)height;
-    const float3 target = cam.corner.xyz + sx * cam.horizontal.xyz + sy * cam.vertical.xyz;
-    float3 o = cam.origin.xyz;
-#ifdef HAS_THIN_LENS
-    if (cam.lens_radius > 0.0f) {
-      const float r = cam.lens_radius * sqrt(uniform(&g)), phi = 2.0f * PI_F * uniform(&g);
-      o += r * cos(phi) * cam.u.xyz + r * sin(phi) * cam.v.xyz;
-    }
-#endif
-    const float3 c = path_radiance(&sc, o, normalize(target - o), &g);
-    if (isfinite(c.x) && isfinite(c.y) && isfinite(c.z)) {  // render.hpp drops NaN
-      sum += (float4)(c, 1.0f);
-      sum_sq += (float4)(c * c, 0.0f);
-    }
-  }
-  const uint i = y * width + x;
-  const float4 total = sample_offset == 0 ? sum : accum[i] + sum;
-  accum[i] = total;
-  accum_sq[i] = sample_offset == 0 ? sum_sq : accum_sq[i] + sum_sq;
-  const float3 mean = total.xyz / fmax(total.w, 1.0f);
-  display[(height - 1 - y) * width + x] =
-      (uchar4)(srgb_byte(mean.x, srgb_steps), srgb_byte(mean.y, srgb_steps), srgb_byte(mean.z, srgb_steps), 255);
 }
 // [end]
 

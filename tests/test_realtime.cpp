@@ -311,12 +311,13 @@ void check_scene(const char* name, const scene& sc, std::vector<integrator> meth
 // same path as reference_sample's with the same (seed, pixel, sample) and differ only by float
 // rounding. Were the streams out of step (a draw added or moved), the difference would be that
 // of independent samples: the RMS difference must stay under 20 % of that.
-void check_paired(const char* name, const scene& sc, integrator m) {
+void check_paired(const char* name, const scene& sc, integrator m, int w = 16, int h = 12,
+                  std::string* options = nullptr) {
   auto ctx = device();
   if (!ctx) return;
-  const int w = 16, h = 12, spp = 16;
+  const int spp = 16;
   const std::uint64_t seed = 11;
-  const estimate k = kernel_render(*ctx, sc, w, h, spp, method(m), seed);
+  const estimate k = kernel_render(*ctx, sc, w, h, spp, method(m), seed, options);
   const estimate c = cpu_reference(sc, w, h, spp, method(m), seed);
   double d2 = 0, independent = 0;
   for (int y = 0; y < h; ++y)
@@ -783,23 +784,59 @@ TEST_CASE("the kernel's image lookups: texture.hpp's bilinear, repeat and clamp,
   }
 }
 
+// The loop of eight paths per work item (PATH_LANES) is built for the scenes it covers: each
+// lane must draw path.hpp's numbers in path.hpp's order as the one-path loop does, for every
+// method, with an aperture, and in a row whose width is not a multiple of 8 (the last work item
+// has lanes without a pixel).
+TEST_CASE("the eight-lane loop: path.hpp's samples in path.hpp's order (paired; naive, nee, mis; 13 x 5)") {
+  scene glass = cornell_box<double>(cornell_variant::glass);
+  scene lens = glass;
+  lens.camera.aperture = 0.2;  // focused on look_at, the back wall
+  for (integrator m : {integrator::naive, integrator::nee, integrator::mis}) {
+    std::string options;
+    check_paired("cornell glass", glass, m, 13, 5, &options);
+    CAPTURE(options);
+    if (!options.empty()) CHECK(options.find("-DPATH_LANES") != std::string::npos);
+  }
+  std::string options;
+  check_paired("thin lens", lens, integrator::mis, 13, 5, &options);
+  CAPTURE(options);
+  if (!options.empty()) CHECK(options.find("-DHAS_THIN_LENS") != std::string::npos);
+  if (!options.empty()) CHECK(options.find("-DPATH_LANES") != std::string::npos);
+  // No light to sample (a plain background): the light sample's three numbers are drawn all the same.
+  scene open;
+  const int grey = open.add_material(material::lambertian(rgb(0.5f)));
+  open.add(sphere{{0, 0, -1}, 0.5}, grey);
+  open.add(sphere{{0, -100.5, -1}, 100}, grey);
+  open.background = rgb(0.6f, 0.7f, 0.9f);
+  for (integrator m : {integrator::naive, integrator::nee}) {
+    check_paired("no light", open, m, 13, 5, &options);
+    if (!options.empty()) CHECK(options.find("-DPATH_LANES") != std::string::npos);
+  }
+  // A spherical light and a sky are not covered: that scene takes the one-path loop.
+  CHECK(build_options(pack_scene(spheres_scene(), 8, 8, method(integrator::mis, 8)).features).find("PATH_LANES") ==
+        std::string::npos);
+}
+
 TEST_CASE("progressive accumulation: 4 launches of 8 spp are one launch of 32") {
   auto ctx = device();
   if (!ctx) return;
-  const gpu_scene g = pack_scene(spheres_scene(), 32, 32, method(integrator::mis, 8));
-  gpu_renderer a(*ctx, g, 32, 32, 3), b(*ctx, g, 32, 32, 3);
-  for (int i = 0; i < 4; ++i) a.launch(8);
-  b.launch(32);
-  const image ia = a.read_image(), ib = b.read_image();
-  CHECK(a.samples() == 32);
-  double worst = 0;  // the same samples, summed in float in another grouping: rounding only
-  for (int y = 0; y < 32; ++y)
-    for (int x = 0; x < 32; ++x)
-      worst = std::max(worst, double(max_component(glm::abs(ia.at(x, y) - ib.at(x, y)))));
-  CHECK(worst < 1e-4);
-  a.reset();  // a restart gives the first frame again
-  a.launch(32);
-  CHECK(a.read_image().at(5, 7) == ib.at(5, 7));
+  for (const scene& sc : {spheres_scene(), cornell_box<double>(cornell_variant::glass)}) {  // one path, eight lanes
+    const gpu_scene g = pack_scene(sc, 32, 32, method(integrator::mis, 8));
+    gpu_renderer a(*ctx, g, 32, 32, 3), b(*ctx, g, 32, 32, 3);
+    for (int i = 0; i < 4; ++i) a.launch(8);
+    b.launch(32);
+    const image ia = a.read_image(), ib = b.read_image();
+    CHECK(a.samples() == 32);
+    double worst = 0;  // the same samples, summed in float in another grouping: rounding only
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 32; ++x)
+        worst = std::max(worst, double(max_component(glm::abs(ia.at(x, y) - ib.at(x, y)))));
+    CHECK(worst < 1e-4);
+    a.reset();  // a restart gives the first frame again
+    a.launch(32);
+    CHECK(a.read_image().at(5, 7) == ib.at(5, 7));
+  }
 }
 
 TEST_CASE("the display is image_io's to_byte of the running mean, byte for byte") {

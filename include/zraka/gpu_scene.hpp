@@ -561,6 +561,18 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
 }
 // [end]
 
+// The scenes the kernel's eight-lane loop covers (PATH_LANES, book 4.3): spheres and quads, Lambert
+// without a texture, glass, emitters and quad lights, with any method and camera. Anything else
+// (a plane, a mesh, another material or light, an environment) takes the loop of one path per
+// work item.
+inline bool lanes_cover(const gpu_features& f) {
+  return !(f.planes || f.triangles || f.metal || f.phong || f.checker || f.rough_conductor || f.rough_dielectric ||
+           f.textures || f.image_textures || f.noise_textures || f.uv_checker || f.environment || f.sphere_lights ||
+           f.triangle_lights || f.point_lights || f.weak_seed);
+}
+// How many pixels a work item of the lanes loop renders: the kernel's float8.
+constexpr int gpu_path_lanes = 8;
+
 // [listing gpu-options]
 // The -D switches for a scene's features; all_features compiles every code path (the
 // benchmark's comparison, and what one kernel for every scene would be).
@@ -594,6 +606,7 @@ inline std::string build_options(const gpu_features& f, bool all_features = fals
   o += f.method == integrator::naive ? " -DMETHOD_NAIVE" : f.method == integrator::nee ? " -DMETHOD_NEE" : " -DMETHOD_MIS";
   if (f.weak_seed) o += " -DWEAK_SEED";
   o += " -DMAX_DEPTH=" + std::to_string(f.max_depth) + " -DRR_DEPTH=" + std::to_string(f.rr_depth);
+  if (!all_features && lanes_cover(f)) o += " -DPATH_LANES";  // all features: the one-path loop
   return o;
 }
 // [end]
