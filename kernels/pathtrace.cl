@@ -2213,6 +2213,45 @@ kernel void probe_quads(global const quad_t* quads, global const quad4_t* quad_g
   out[2 * i] = (float4)(t, a, b, (float)q);
   out[2 * i + 1] = (float4)(any_quad(&sc, o, D, t_max) ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
 }
+#ifdef PATH_LANES
+// The same rays eight at a time through the lanes loop's tests. out[2i] = (t, material, front
+// face, 0) of nearest_hit8 (t_max infinite; material -1: nothing hit); out[2i + 1].x = 1 if
+// occluded8 finds a quad before in[2i + 1].w, else 0.
+kernel void probe_lanes(global const quad_t* quads, global const quad4_t* quad_groups, int n_quads,
+                        global const float4* in, global float4* out, int n) {
+  const int i0 = get_global_id(0) * LANES;
+  if (i0 >= n) return;
+  scene_t sc;
+  sc.quads = quads;
+  sc.quad_groups = quad_groups;
+  sc.n_quads = n_quads;
+  sc.n_spheres = 0;
+  float v[7][LANES];
+  int live[LANES];
+  for (int k = 0; k < LANES; ++k) {  // lanes past the last ray repeat it, outside the mask
+    const int i = min(i0 + k, n - 1);
+    const float4 o = in[2 * i], d = in[2 * i + 1];
+    v[0][k] = o.x, v[1][k] = o.y, v[2][k] = o.z, v[3][k] = d.x, v[4][k] = d.y, v[5][k] = d.z, v[6][k] = d.w;
+    live[k] = i0 + k < n ? -1 : 0;
+  }
+  const vec8 o = vec8_of(vload8(0, v[0]), vload8(0, v[1]), vload8(0, v[2]));
+  const vec8 D = vec8_of(vload8(0, v[3]), vload8(0, v[4]), vload8(0, v[5]));
+  const mask8 m = vload8(0, live);
+  hit8_t h;
+  const mask8 found = nearest_hit8(&sc, o, D, m, &h);
+  const mask8 blocked = occluded8(&sc, o, D, vload8(0, v[6]), m);
+  float t[LANES];
+  int material[LANES], front[LANES], b[LANES];
+  vstore8(h.t, 0, t);
+  vstore8(select((int8)(-1), h.material, found), 0, material);
+  vstore8(h.front_face, 0, front);
+  vstore8(blocked, 0, b);
+  for (int k = 0; k < LANES && i0 + k < n; ++k) {
+    out[2 * (i0 + k)] = (float4)(t[k], (float)material[k], front[k] ? 1.0f : 0.0f, 0.0f);
+    out[2 * (i0 + k) + 1] = (float4)(b[k] ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
+  }
+}
+#endif
 #endif
 #ifdef HAS_IMAGE_TEXTURES
 // out[i] = lookup_bilinear(textures[0], uv[i])

@@ -659,14 +659,15 @@ TEST_CASE("the kernel's quads four at a time: each lane is quad.hpp's test (near
   auto ctx = device();
   if (!ctx) return;
   scene sc;
-  const int m = sc.add_material(material::lambertian(rgb(0.5f)));
-  sc.add(quad{{-2, -2, -3}, {4, 0, 0}, {0, 4, 0}}, m);                      // back wall
-  sc.add(quad{{-2, -2, -3}, {0, 0, 5}, {4, 0, 0}}, m);                      // floor
-  sc.add(quad{{-2, -2, -3}, {0, 4, 0}, {0, 0, 5}}, m);                      // left wall
-  sc.add(quad{{-0.5, 0.3, -1}, {1, 0.2, 0.1}, {-0.1, 0.3, 0.8}}, m);        // slanted
-  sc.add(quad{{0.25, 0.25, -1.5}, {1e-6, 0, 0}, {0, 1e-6, 0}}, m);         // tiny (float: w = N/|n|)
-  sc.add(quad{{-1e10, 1.5, -1e10}, {2e10, 0, 0}, {0, 0, 2e10}}, m);        // huge ceiling
-  sc.add(quad{{1, -1, -2}, {0, 1.5, 0}, {0.2, 0, 1}}, m);
+  int shade = 0;  // a material of its own for each quad: the lanes' probe reports the material
+  auto m = [&] { return sc.add_material(material::lambertian(rgb(0.1f * float(++shade)))); };
+  sc.add(quad{{-2, -2, -3}, {4, 0, 0}, {0, 4, 0}}, m());                      // back wall
+  sc.add(quad{{-2, -2, -3}, {0, 0, 5}, {4, 0, 0}}, m());                      // floor
+  sc.add(quad{{-2, -2, -3}, {0, 4, 0}, {0, 0, 5}}, m());                      // left wall
+  sc.add(quad{{-0.5, 0.3, -1}, {1, 0.2, 0.1}, {-0.1, 0.3, 0.8}}, m());        // slanted
+  sc.add(quad{{0.25, 0.25, -1.5}, {1e-6, 0, 0}, {0, 1e-6, 0}}, m());         // tiny (float: w = N/|n|)
+  sc.add(quad{{-1e10, 1.5, -1e10}, {2e10, 0, 0}, {0, 0, 2e10}}, m());        // huge ceiling
+  sc.add(quad{{1, -1, -2}, {0, 1.5, 0}, {0.2, 0, 1}}, m());
   const gpu_scene g = pack_scene(sc, 4, 4, method(integrator::mis));
   REQUIRE(g.quads.size() == 7);
   REQUIRE(g.quad_groups.size() == 2);
@@ -746,6 +747,41 @@ TEST_CASE("the kernel's quads four at a time: each lane is quad.hpp's test (near
   }
   std::printf("quads four at a time: %d rays, %d hits, each checked bit for bit against quad_root\n", n, hits);
   CHECK(hits > n / 3);
+
+  // The eight-lane loop's tests (PATH_LANES) on the same rays, eight at a time (the last work
+  // item has lanes without a ray): quad_root's nearest quad and t, bit for bit, and its any hit.
+  const auto lanes_prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
+                                                  "-cl-std=CL1.2 -DHAS_QUADS -DMETHOD_MIS -DPATH_LANES -DPROBES");
+  const auto lk = cl::make_kernel(lanes_prog, "probe_lanes");
+  cl::set_args(lk, quads, groups, cl_int(g.quads.size()), inb, out, cl_int(n));
+  cl::run_1d(*ctx, lk, std::size_t((n + 7) / 8));
+  ctx->read(out, o.size() * sizeof(cl_float4), o.data());
+  int lane_hits = 0;
+  for (int i = 0; i < n; ++i) {
+    const auto& [origin, d] = rays[std::size_t(i)];
+    rayf ray;
+    ray.origin = origin;
+    ray.direction = vec3f(d);
+    int want = -1, nearest = -1;  // with the ray's t_max, and without one
+    quad_root_t<float> best{};
+    for (std::size_t j = 0; j < qs.size(); ++j) {
+      if (quad_root(qs[j], pls[j], ray, 0.0f, d.w)) want = int(j);
+      if (auto root = quad_root(qs[j], pls[j], ray, 0.0f, nearest < 0 ? inf : best.t)) {
+        nearest = int(j);
+        best = *root;
+      }
+    }
+    const cl_float4 got = o[2 * std::size_t(i)];
+    CAPTURE(i);
+    CHECK(int(got.s[1]) == (nearest < 0 ? -1 : g.quads[std::size_t(nearest)].material));
+    CHECK((o[2 * std::size_t(i) + 1].s[0] == 1.0f) == (want >= 0));
+    if (nearest < 0) continue;
+    ++lane_hits;
+    CHECK(got.s[0] == best.t);
+    CHECK((got.s[2] == 1.0f) == (glm::dot(ray.direction, pls[std::size_t(nearest)].N) < 0));
+  }
+  std::printf("the same rays in eight lanes: %d hits, each quad_root's nearest quad and t bit for bit\n", lane_hits);
+  CHECK(lane_hits > n / 3);
 }
 
 TEST_CASE("the kernel's image lookups: texture.hpp's bilinear, repeat and clamp, NaN and huge (u, v)") {
