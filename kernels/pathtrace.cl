@@ -1542,7 +1542,9 @@ vec8 scale8(vec8 a, float8 s) { return vec8_of(a.x * s, a.y * s, a.z * s); }
 vec8 div8(vec8 a, float8 s) { return vec8_of(a.x / s, a.y / s, a.z / s); }
 vec8 neg8(vec8 a) { return vec8_of(-a.x, -a.y, -a.z); }
 vec8 abs8(vec8 a) { return vec8_of(fabs(a.x), fabs(a.y), fabs(a.z)); }
-float8 dot8(vec8 a, vec8 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+#pragma OPENCL FP_CONTRACT OFF
+float8 dot8(vec8 a, vec8 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }  // unfused: glm::dot's rounding
+#pragma OPENCL FP_CONTRACT ON
 vec8 pick8(vec8 a, vec8 b, mask8 m) { return vec8_of(select(a.x, b.x, m), select(a.y, b.y, m), select(a.z, b.z, m)); }
 mask8 nonzero8(vec8 a) { return (a.x != 0.0f) | (a.y != 0.0f) | (a.z != 0.0f); }
 mask8 finite8(vec8 a) { return isfinite(a.x) & isfinite(a.y) & isfinite(a.z); }
@@ -1622,8 +1624,10 @@ mask8 quad8_roots(global const quad4_t* g, int j, vec8 o, vec8 D, float8 t_max, 
 #endif
 
 #ifdef HAS_SPHERES
+#pragma OPENCL FP_CONTRACT OFF
 // hit_sphere's root for eight rays: the lanes that meet sphere s with t in (0, t_max), their t,
-// and whether it is the nearer root (the record's fallback direction needs it).
+// and whether it is the nearer root (the record's fallback direction needs it). Products are not
+// fused, so that each lane rounds as sphere.hpp's sphere_root does in float.
 mask8 sphere8_root(const sphere_t s, vec8 o, vec8 D, float8 t_max, float8* t_out, mask8* nearer) {
   const vec8 c = splat8(s.center_radius.xyz);
   const float r = s.center_radius.w;
@@ -1643,6 +1647,7 @@ mask8 sphere8_root(const sphere_t s, vec8 o, vec8 D, float8 t_max, float8* t_out
   *nearer = in0;
   return (a > 0.0f) & (disc >= 0.0f) & (in0 | in1);
 }
+#pragma OPENCL FP_CONTRACT ON
 #endif
 
 // Eight hit records: hit_t with a lane for each field.
@@ -1653,6 +1658,7 @@ typedef struct {
   int8 material, light;
 } hit8_t;
 
+#pragma OPENCL FP_CONTRACT OFF
 // [listing cl-nearest8]
 // nearest_hit for the rays in the lanes of `live`: every sphere and quad tested in all eight
 // lanes at once (a shape's numbers are the same in every lane), then each lane's record from the
@@ -1721,6 +1727,7 @@ mask8 nearest_hit8(const scene_t* sc, vec8 o, vec8 D, mask8 live, hit8_t* h) {
   h->front_face = dot8(D, h->normal) < 0.0f;
   return kind != 0;
 }
+#pragma OPENCL FP_CONTRACT ON  // records unfused, as sphere.hpp makes them on the CPU
 
 // occluded for the segments in the lanes of `live`: the lanes whose segment is blocked.
 mask8 occluded8(const scene_t* sc, vec8 o, vec8 D, float8 t_max, mask8 live) {
@@ -2213,19 +2220,31 @@ kernel void probe_quads(global const quad_t* quads, global const quad4_t* quad_g
   out[2 * i] = (float4)(t, a, b, (float)q);
   out[2 * i + 1] = (float4)(any_quad(&sc, o, D, t_max) ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
 }
+#endif
+#ifdef HAS_IMAGE_TEXTURES
+// out[i] = lookup_bilinear(textures[0], uv[i])
+kernel void probe_image(global const texture_t* t, global const float4* texels, global const float2* uv,
+                        global float4* out, int n) {
+  const int i = get_global_id(0);
+  if (i < n) out[i] = (float4)(lookup_bilinear(t, texels, uv[i]), 0.0f);
+}
+#endif
 #ifdef PATH_LANES
-// The same rays eight at a time through the lanes loop's tests. out[2i] = (t, material, front
-// face, 0) of nearest_hit8 (t_max infinite; material -1: nothing hit); out[2i + 1].x = 1 if
-// occluded8 finds a quad before in[2i + 1].w, else 0.
-kernel void probe_lanes(global const quad_t* quads, global const quad4_t* quad_groups, int n_quads,
-                        global const float4* in, global float4* out, int n) {
+// Rays eight at a time through the lanes loop's tests (ray i: in[2i] origin, in[2i + 1]
+// direction and t_max in w). out[3i] = (t, material, front face, 0) of nearest_hit8 (t_max
+// infinite; material -1: nothing hit), out[3i + 1] = its point, out[3i + 2].x = 1 if occluded8
+// finds a shape before t_max, else 0.
+kernel void probe_lanes(global const sphere_t* spheres, int n_spheres, global const quad_t* quads,
+                        global const quad4_t* quad_groups, int n_quads, global const float4* in,
+                        global float4* out, int n) {
   const int i0 = get_global_id(0) * LANES;
   if (i0 >= n) return;
   scene_t sc;
+  sc.spheres = spheres;
+  sc.n_spheres = n_spheres;
   sc.quads = quads;
   sc.quad_groups = quad_groups;
   sc.n_quads = n_quads;
-  sc.n_spheres = 0;
   float v[7][LANES];
   int live[LANES];
   for (int k = 0; k < LANES; ++k) {  // lanes past the last ray repeat it, outside the mask
@@ -2240,25 +2259,18 @@ kernel void probe_lanes(global const quad_t* quads, global const quad4_t* quad_g
   hit8_t h;
   const mask8 found = nearest_hit8(&sc, o, D, m, &h);
   const mask8 blocked = occluded8(&sc, o, D, vload8(0, v[6]), m);
-  float t[LANES];
+  float t[LANES], px[LANES], py[LANES], pz[LANES];
   int material[LANES], front[LANES], b[LANES];
   vstore8(h.t, 0, t);
+  vstore8(h.p.x, 0, px), vstore8(h.p.y, 0, py), vstore8(h.p.z, 0, pz);
   vstore8(select((int8)(-1), h.material, found), 0, material);
   vstore8(h.front_face, 0, front);
   vstore8(blocked, 0, b);
   for (int k = 0; k < LANES && i0 + k < n; ++k) {
-    out[2 * (i0 + k)] = (float4)(t[k], (float)material[k], front[k] ? 1.0f : 0.0f, 0.0f);
-    out[2 * (i0 + k) + 1] = (float4)(b[k] ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
+    out[3 * (i0 + k)] = (float4)(t[k], (float)material[k], front[k] ? 1.0f : 0.0f, 0.0f);
+    out[3 * (i0 + k) + 1] = (float4)(px[k], py[k], pz[k], 0.0f);
+    out[3 * (i0 + k) + 2] = (float4)(b[k] ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
   }
-}
-#endif
-#endif
-#ifdef HAS_IMAGE_TEXTURES
-// out[i] = lookup_bilinear(textures[0], uv[i])
-kernel void probe_image(global const texture_t* t, global const float4* texels, global const float2* uv,
-                        global float4* out, int n) {
-  const int i = get_global_id(0);
-  if (i < n) out[i] = (float4)(lookup_bilinear(t, texels, uv[i]), 0.0f);
 }
 #endif
 #endif

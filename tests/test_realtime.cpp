@@ -753,9 +753,12 @@ TEST_CASE("the kernel's quads four at a time: each lane is quad.hpp's test (near
   const auto lanes_prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
                                                   "-cl-std=CL1.2 -DHAS_QUADS -DMETHOD_MIS -DPATH_LANES -DPROBES");
   const auto lk = cl::make_kernel(lanes_prog, "probe_lanes");
-  cl::set_args(lk, quads, groups, cl_int(g.quads.size()), inb, out, cl_int(n));
+  const auto no_spheres = ctx->make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_sphere));
+  const auto lanes_out = ctx->make_buffer(CL_MEM_WRITE_ONLY, 3 * std::size_t(n) * sizeof(cl_float4));
+  cl::set_args(lk, no_spheres, cl_int(0), quads, groups, cl_int(g.quads.size()), inb, lanes_out, cl_int(n));
   cl::run_1d(*ctx, lk, std::size_t((n + 7) / 8));
-  ctx->read(out, o.size() * sizeof(cl_float4), o.data());
+  std::vector<cl_float4> lo(3 * std::size_t(n));
+  ctx->read(lanes_out, lo.size() * sizeof(cl_float4), lo.data());
   int lane_hits = 0;
   for (int i = 0; i < n; ++i) {
     const auto& [origin, d] = rays[std::size_t(i)];
@@ -771,10 +774,10 @@ TEST_CASE("the kernel's quads four at a time: each lane is quad.hpp's test (near
         best = *root;
       }
     }
-    const cl_float4 got = o[2 * std::size_t(i)];
+    const cl_float4 got = lo[3 * std::size_t(i)];
     CAPTURE(i);
     CHECK(int(got.s[1]) == (nearest < 0 ? -1 : g.quads[std::size_t(nearest)].material));
-    CHECK((o[2 * std::size_t(i) + 1].s[0] == 1.0f) == (want >= 0));
+    CHECK((lo[3 * std::size_t(i) + 2].s[0] == 1.0f) == (want >= 0));
     if (nearest < 0) continue;
     ++lane_hits;
     CHECK(got.s[0] == best.t);
@@ -782,6 +785,114 @@ TEST_CASE("the kernel's quads four at a time: each lane is quad.hpp's test (near
   }
   std::printf("the same rays in eight lanes: %d hits, each quad_root's nearest quad and t bit for bit\n", lane_hits);
   CHECK(lane_hits > n / 3);
+}
+
+// The lanes loop's sphere test (sphere8_root, and the record nearest_hit8 makes) against
+// sphere.hpp in float on the kernel's numbers, at the extremes: a 1e-6 sphere, a 1e10 sphere whose
+// surface passes near the rays' origins, a sphere 1e6 away, two that overlap, rays aimed at each,
+// tangent to each (the line 1e-6 inside and outside the radius), leaving a surface outwards and
+// inwards, and starting inside. The products are not fused on either side: t and the point bit
+// for bit.
+TEST_CASE("the eight-lane loop's spheres: sphere.hpp's root and point bit for bit, at the extremes") {
+  auto ctx = device();
+  if (!ctx) return;
+  scene sc;
+  int shade = 0;
+  auto m = [&] { return sc.add_material(material::lambertian(rgb(0.1f * float(++shade)))); };
+  sc.add(sphere{{0, 0, -3}, 1}, m());
+  sc.add(sphere{{0.8, 0, -3}, 0.5}, m());                // overlaps the first
+  sc.add(sphere{{0.3, 0.2, -1}, 1e-6}, m());             // tiny
+  sc.add(sphere{{0, -1e10 - 2, 0}, 1e10}, m());          // huge: a floor 2 below the origins
+  sc.add(sphere{{0.5, 0.5, -1e6}, 1}, m());              // far
+  const gpu_scene g = pack_scene(sc, 4, 4, method(integrator::mis));
+  REQUIRE(g.spheres.size() == 5);
+  std::vector<sphere_t<float>> ss;
+  for (const gpu_sphere& s : g.spheres)
+    ss.push_back({vec3f(s.center_radius.x, s.center_radius.y, s.center_radius.z), s.center_radius.w});
+  rng r(23, 0, 0);
+  auto uniform = [&](double lo, double hi) { return float(lo + (hi - lo) * r.uniform()); };
+  auto direction = [&] { return glm::normalize(vec3f(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1))); };
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<std::pair<vec3f, glm::vec4>> rays;
+  for (int i = 0; i < 300; ++i) rays.push_back({vec3f(uniform(-2, 2), uniform(-1.9, 2), uniform(-4, 1)), glm::vec4(direction(), inf)});
+  for (std::size_t j = 0; j < ss.size(); ++j) {
+    const vec3f c = ss[j].center;
+    const float R = ss[j].radius;
+    for (int i = 0; i < 60; ++i) {
+      const vec3f o(uniform(-1, 1), uniform(-1, 1), uniform(-0.5, 0.5));
+      const vec3f w = direction();  // a point on the sphere, towards the origin's side
+      const vec3f to_o = glm::normalize(o - c);
+      const vec3f n = glm::normalize(to_o + 0.9f * w);
+      const float t_max = i % 3 == 0 ? uniform(0.5, 3.0) : inf;
+      if (j != 3) rays.push_back({o, glm::vec4(glm::normalize((c + R * n) - o), t_max)});
+      // tangent: the line passes at R (1 +- 1e-6) from the centre
+      const vec3f side = glm::normalize(glm::cross(to_o, w));
+      const float k = i % 2 ? 1 + 1e-6f : 1 - 1e-6f;
+      if (j != 3) rays.push_back({o, glm::vec4(glm::normalize((c + k * R * side) - o), inf)});
+      if (j == 3) rays.push_back({o, glm::vec4(glm::normalize(vec3f(uniform(-1, 1), uniform(-1, -0.01), uniform(-1, 1))), inf)});
+      if (j <= 1) {
+        const vec3f on = c + R * w;  // on the surface, leaving outwards and going in
+        rays.push_back({on, glm::vec4(glm::normalize(w + 0.5f * direction()), inf)});
+        rays.push_back({on, glm::vec4(-w, inf)});
+        rays.push_back({c + 0.3f * R * direction(), glm::vec4(direction(), inf)});  // from inside
+      }
+    }
+  }
+  std::vector<cl_float4> in;
+  for (const auto& [o, d] : rays) {
+    in.push_back({{o.x, o.y, o.z, 0}});
+    in.push_back({{d.x, d.y, d.z, d.w}});
+  }
+  const int n = int(rays.size());
+  const auto prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
+                                            "-cl-std=CL1.2 -DHAS_SPHERES -DMETHOD_MIS -DPATH_LANES -DPROBES");
+  const auto k = cl::make_kernel(prog, "probe_lanes");
+  const auto spheres = ctx->make_buffer(CL_MEM_READ_ONLY, g.spheres.size() * sizeof(gpu_sphere), g.spheres.data());
+  const auto no_quads = ctx->make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_quad4));
+  const auto inb = ctx->make_buffer(CL_MEM_READ_ONLY, in.size() * sizeof(cl_float4), in.data());
+  const auto out = ctx->make_buffer(CL_MEM_WRITE_ONLY, 3 * std::size_t(n) * sizeof(cl_float4));
+  cl::set_args(k, spheres, cl_int(g.spheres.size()), no_quads, no_quads, cl_int(0), inb, out, cl_int(n));
+  cl::run_1d(*ctx, k, std::size_t((n + 7) / 8));
+  std::vector<cl_float4> o(3 * std::size_t(n));
+  ctx->read(out, o.size() * sizeof(cl_float4), o.data());
+  int hits = 0, tiny = 0, grazing = 0;
+  for (int i = 0; i < n; ++i) {
+    const auto& [origin, d] = rays[std::size_t(i)];
+    rayf ray;  // the kernel's direction as it is
+    ray.origin = origin;
+    ray.direction = vec3f(d);
+    int nearest = -1, want = -1;
+    float best = inf;
+    for (std::size_t j = 0; j < ss.size(); ++j) {
+      if (sphere_root(ss[j], ray, 0.0f, d.w)) want = int(j);
+      if (auto root = sphere_root(ss[j], ray, 0.0f, best)) {
+        nearest = int(j);
+        best = root->t;
+      }
+    }
+    const cl_float4 got = o[3 * std::size_t(i)], p = o[3 * std::size_t(i) + 1];
+    CAPTURE(i);
+    CHECK(int(got.s[1]) == (nearest < 0 ? -1 : g.spheres[std::size_t(nearest)].material));
+    CHECK((o[3 * std::size_t(i) + 2].s[0] == 1.0f) == (want >= 0));
+    if (nearest < 0) continue;
+    ++hits;
+    tiny += nearest == 2;
+    hit_t<float> rec;
+    REQUIRE(intersect(ss[std::size_t(nearest)], ray, 0.0f, std::nextafter(best, inf), rec));
+    CHECK(got.s[0] == best);
+    CHECK(p.s[0] == rec.p.x);
+    CHECK(p.s[1] == rec.p.y);
+    CHECK(p.s[2] == rec.p.z);
+    CHECK((got.s[2] == 1.0f) == rec.front_face);
+    const vec3f f = ray.origin - ss[std::size_t(nearest)].center;  // a tangent ray that touched
+    grazing += std::abs(glm::length(f - glm::dot(f, ray.direction) * ray.direction) - ss[std::size_t(nearest)].radius) <
+               1e-5f * ss[std::size_t(nearest)].radius;
+  }
+  std::printf("spheres in eight lanes: %d rays, %d hits (%d on the 1e-6 sphere, %d tangent), each sphere_root's t and "
+              "the record's point bit for bit\n", n, hits, tiny, grazing);
+  CHECK(hits > n / 3);
+  CHECK(tiny > 10);
+  CHECK(grazing > 10);
 }
 
 TEST_CASE("the kernel's image lookups: texture.hpp's bilinear, repeat and clamp, NaN and huge (u, v)") {
