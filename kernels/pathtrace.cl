@@ -1573,7 +1573,7 @@ float8 uniform8(stream8_t* r, mask8 m) {
   const uint8 h = r->key_sample;
   const uint8 word = pcg_hash8(h ^ (r->dimension + 0x9e3779b9u + (h << 6) + (h >> 2)));
   const uint8 hi = pcg_hash8(r->key_pixel ^ word);
-  r->dimension += select((uint8)(0u), (uint8)(2u), as_uint8(m));
+  r->dimension += select((uint8)(0u), (uint8)(2u), as_uint8(m));  // two words a number, as uniform()
   return convert_float8(hi >> 8) * 0x1p-24f;
 }
 
