@@ -1766,7 +1766,9 @@ material8_t materials8(global const material_t* materials, int8 index) {
   float ax[LANES], ay[LANES], az[LANES], rx[LANES], ry[LANES], rz[LANES], ior[LANES];
   vstore8(index, 0, mi);
   for (int k = 0; k < LANES; ++k) {
-    global const material_t* m = &materials[max(mi[k], 0)];  // -1: a lane that hit nothing
+    kind[k] = -1, two[k] = 0, ax[k] = ay[k] = az[k] = rx[k] = ry[k] = rz[k] = 0.0f, ior[k] = 1.0f;
+    if (mi[k] < 0) continue;  // a lane that hit nothing
+    global const material_t* m = &materials[mi[k]];
     kind[k] = m->kind;
     two[k] = m->two_sided ? -1 : 0;
     ax[k] = m->albedo_a.x, ay[k] = m->albedo_a.y, az[k] = m->albedo_a.z;

@@ -48,6 +48,7 @@ TEST_CASE("diffuse spheres: only the sphere, checker, emitter and sphere-light s
                               "-DHAS_PHONG", "-DHAS_QUAD_LIGHTS", "-DHAS_TRIANGLE_LIGHTS", "-DHAS_POINT_LIGHTS",
                               "-DHAS_THIN_LENS", "-DMETHOD_MIS"})
     CHECK(has(all, present));
+  CHECK(!has(all, "-DPATH_LANES"));  // every feature: the one-path loop
   CHECK_FALSE(has(all, "-DMETHOD_NEE"));
 }
 
@@ -398,7 +399,8 @@ TEST_CASE("extreme case: an empty scene packs to empty arrays and the bare optio
   CHECK(g.materials.empty());
   CHECK(g.lights.empty());
   CHECK(g.background.x == 0.25f);
-  CHECK(build_options(g.features) == "-cl-std=CL1.2 -DMETHOD_MIS -DMAX_DEPTH=0 -DRR_DEPTH=3");
+  // Nothing the eight-lane loop lacks: it is chosen (and sees only the background).
+  CHECK(build_options(g.features) == "-cl-std=CL1.2 -DMETHOD_MIS -DMAX_DEPTH=0 -DRR_DEPTH=3 -DPATH_LANES");
   CHECK_THROWS_AS(pack_scene(sc, 0, 10, depth(8)), error);
   CHECK_THROWS_WITH_AS(pack_scene(sc, 1, 1, depth(-1)), doctest::Contains("depth"), error);
 }
