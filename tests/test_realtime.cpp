@@ -655,6 +655,18 @@ TEST_CASE("the kernel's microfacets: f, pdf and samples as microfacet.hpp's, gra
 // and this build does not either (no -mfma). Seven quads (the second group has an empty lane),
 // a tiny and a huge one among them; rays from anywhere, rays aimed at and just beside each
 // quad, rays leaving a quad's surface (which must not see it again) and rays grazing its plane.
+namespace {
+// Rays for a probe kernel: ray i is in[2i] (origin) and in[2i + 1] (direction, w: t_max).
+std::vector<cl_float4> probe_rays(const std::vector<std::pair<vec3f, glm::vec4>>& rays) {
+  std::vector<cl_float4> in;
+  for (const auto& [o, d] : rays) {
+    in.push_back({{o.x, o.y, o.z, 0}});
+    in.push_back({{d.x, d.y, d.z, d.w}});
+  }
+  return in;
+}
+}  // namespace
+
 TEST_CASE("the kernel's quads four at a time: each lane is quad.hpp's test (nearest and any hit)") {
   auto ctx = device();
   if (!ctx) return;
@@ -702,11 +714,7 @@ TEST_CASE("the kernel's quads four at a time: each lane is quad.hpp's test (near
         rays.push_back({on + 1e-3f * pls[j].N, glm::vec4(glm::normalize(qs[j].u + uniform(-1e-7, 1e-7) * pls[j].N), inf)});
       }
     }
-  std::vector<cl_float4> in;
-  for (const auto& [o, d] : rays) {
-    in.push_back({{o.x, o.y, o.z, 0}});
-    in.push_back({{d.x, d.y, d.z, d.w}});
-  }
+  const std::vector<cl_float4> in = probe_rays(rays);
   const int n = int(rays.size());
   const auto prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
                                             "-cl-std=CL1.2 -DHAS_QUADS -DMETHOD_MIS -DPROBES");
@@ -838,11 +846,7 @@ TEST_CASE("the eight-lane loop's spheres: sphere.hpp's root and point bit for bi
       }
     }
   }
-  std::vector<cl_float4> in;
-  for (const auto& [o, d] : rays) {
-    in.push_back({{o.x, o.y, o.z, 0}});
-    in.push_back({{d.x, d.y, d.z, d.w}});
-  }
+  const std::vector<cl_float4> in = probe_rays(rays);
   const int n = int(rays.size());
   const auto prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
                                             "-cl-std=CL1.2 -DHAS_SPHERES -DMETHOD_MIS -DPATH_LANES -DPROBES");
