@@ -14,7 +14,7 @@
 //   HAS_ENVIRONMENT the environment light (environment.hpp): seen by rays that leave, sampled
 //   HAS_SPHERE_LIGHTS HAS_QUAD_LIGHTS HAS_TRIANGLE_LIGHTS HAS_POINT_LIGHTS   which lights are sampled
 //   HAS_THIN_LENS   the camera has an aperture   WEAK_SEED   the thesis's per-pixel seed (C7)
-//   PATH_LANES      eight paths per work item in float8 lanes, for the scenes that loop covers
+//   PATH_LANES=8    eight paths per work item in float8 lanes, for the scenes that loop covers
 // Code for a feature the scene does not use is not compiled at all.
 //
 // What changed from the CPU code: no recursion, no pointers between objects (indices into flat
@@ -252,31 +252,37 @@ bool hit_sphere(const sphere_t s, float3 o, float3 D, float t_max, hit_t* h) {
 #ifdef HAS_QUADS
 #pragma OPENCL FP_CONTRACT OFF
 // [listing cl-quad4]
-// quad.hpp's quad_root on four quads at once, lane by lane in float4 (each line below is that
-// function's line, for each lane): the lanes (-1) whose quad the ray meets with t in (0, t_max),
-// and their t, a, b. All four lanes run every test: leaving early when no t is in range was no
-// faster on PoCL (the branch costs what it saves). Products are not fused into multiply-adds
-// here, so that each lane rounds as quad_root does: the same quad, t, a and b, bit for bit.
+// quad.hpp's quad_root, line for line, on lanes of type T (comparisons give M): each name is a T
+// or a float. Four quads and one ray (quad4_roots below): the quads' numbers are float4, the
+// ray's float; one quad and eight rays (the lanes loop's quad8_roots): the other way round. The
+// lanes (-1) that meet their quad with t in (0, t_max), and t, a, b. All lanes run every test:
+// leaving early when no t is in range was no faster on PoCL (the branch costs what it saves).
+// Used where products are not fused into multiply-adds, so that each lane rounds as quad_root
+// does: the same quad, t, a and b, bit for bit.
+#define QUAD_ROOT_LANES(T, M, nx, ny, nz, qx, qy, qz, ux, uy, uz, vx, vy, vz, wx, wy, wz, o, D, t_max)          \
+  const T denom = nx * D.x + ny * D.y + nz * D.z;                                                              \
+  const T qox = qx - o.x, qoy = qy - o.y, qoz = qz - o.z;                                                      \
+  const T s = nx * qox + ny * qoy + nz * qoz;                                                                  \
+  const T t = s / denom;                                                                                       \
+  M hit = (t > 0.0f) & (t < t_max);                                                                            \
+  const T nax = fabs(nx), nay = fabs(ny), naz = fabs(nz);                                                      \
+  hit &= fabs(denom) > GAMMA(3) * (nax * fabs(D.x) + nay * fabs(D.y) + naz * fabs(D.z)); /* parallel */      \
+  const T s_error = GAMMA(4) * (nax * (fabs(qx) + fabs(o.x)) + nay * (fabs(qy) + fabs(o.y)) +                 \
+                                naz * (fabs(qz) + fabs(o.z))) +                                                \
+                    GAMMA(4) * sqrt(qox * qox + qoy * qoy + qoz * qoz);                                        \
+  hit &= fabs(s) > s_error; /* the origin on the plane */                                                      \
+  const T dx = (o.x + t * D.x) - qx, dy = (o.y + t * D.y) - qy, dz = (o.z + t * D.z) - qz;                    \
+  const T a = wx * (dy * vz - dz * vy) + wy * (dz * vx - dx * vz) + wz * (dx * vy - dy * vx);                 \
+  const T b = wx * (uy * dz - uz * dy) + wy * (uz * dx - ux * dz) + wz * (ux * dy - uy * dx);                 \
+  hit &= (a >= 0.0f) & (a <= 1.0f) & (b >= 0.0f) & (b <= 1.0f);                                                \
+  *t_out = t;                                                                                                  \
+  *a_out = a;                                                                                                  \
+  *b_out = b;                                                                                                  \
+  return hit
+
 int4 quad4_roots(const quad4_t q, float3 o, float3 D, float t_max, float4* t_out, float4* a_out, float4* b_out) {
-  const float4 denom = q.nx * D.x + q.ny * D.y + q.nz * D.z;
-  const float4 qox = q.qx - o.x, qoy = q.qy - o.y, qoz = q.qz - o.z;
-  const float4 s = q.nx * qox + q.ny * qoy + q.nz * qoz;
-  const float4 t = s / denom;
-  int4 hit = (t > 0.0f) & (t < t_max);
-  const float4 nax = fabs(q.nx), nay = fabs(q.ny), naz = fabs(q.nz);
-  hit &= fabs(denom) > GAMMA(3) * (nax * fabs(D.x) + nay * fabs(D.y) + naz * fabs(D.z));  // parallel
-  const float4 s_error = GAMMA(4) * (nax * (fabs(q.qx) + fabs(o.x)) + nay * (fabs(q.qy) + fabs(o.y)) +
-                                     naz * (fabs(q.qz) + fabs(o.z))) +
-                         GAMMA(4) * sqrt(qox * qox + qoy * qoy + qoz * qoz);
-  hit &= fabs(s) > s_error;  // the origin on the plane
-  const float4 dx = (o.x + t * D.x) - q.qx, dy = (o.y + t * D.y) - q.qy, dz = (o.z + t * D.z) - q.qz;
-  const float4 a = q.wx * (dy * q.vz - dz * q.vy) + q.wy * (dz * q.vx - dx * q.vz) + q.wz * (dx * q.vy - dy * q.vx);
-  const float4 b = q.wx * (q.uy * dz - q.uz * dy) + q.wy * (q.uz * dx - q.ux * dz) + q.wz * (q.ux * dy - q.uy * dx);
-  hit &= (a >= 0.0f) & (a <= 1.0f) & (b >= 0.0f) & (b <= 1.0f);
-  *t_out = t;
-  *a_out = a;
-  *b_out = b;
-  return hit;
+  QUAD_ROOT_LANES(float4, int4, q.nx, q.ny, q.nz, q.qx, q.qy, q.qz, q.ux, q.uy, q.uz, q.vx, q.vy, q.vz, q.wx, q.wy,
+                  q.wz, o, D, t_max);
 }
 // [end]
 #pragma OPENCL FP_CONTRACT ON
@@ -1529,7 +1535,10 @@ uchar srgb_byte(float c, global const float* steps) {
     defined(HAS_SPHERE_LIGHTS) || defined(HAS_TRIANGLE_LIGHTS) || defined(HAS_POINT_LIGHTS) || defined(WEAK_SEED)
 #error "PATH_LANES covers spheres, quads, Lambert, glass, emitters and quad lights only (gpu_scene.hpp's lanes_cover)"
 #endif
-#define LANES 8
+#if PATH_LANES != 8
+#error "the lanes are float8: build with -DPATH_LANES=8 (gpu_scene.hpp's gpu_path_lanes)"
+#endif
+#define LANES PATH_LANES
 typedef int8 mask8;  // -1 in the lanes where a condition holds
 typedef struct { float8 x, y, z; } vec8;  // eight float3, one per lane
 
@@ -1592,32 +1601,14 @@ vec8 offset_origin8(vec8 p, vec8 p_error, vec8 n, vec8 w) {
 #ifdef HAS_QUADS
 #pragma OPENCL FP_CONTRACT OFF
 // [listing cl-quad8]
-// quad4_roots for quad j of group g (its numbers the same in every lane) and eight rays.
+// The same lines for quad j of group g (its numbers the same in every lane) and eight rays.
 mask8 quad8_roots(global const quad4_t* g, int j, vec8 o, vec8 D, float8 t_max, float8* t_out, float8* a_out,
                   float8* b_out) {
   global const float* q = (global const float*)g + j;  // field f of lane j: q[4 f]
   const float nx = q[0], ny = q[4], nz = q[8], qx = q[12], qy = q[16], qz = q[20];
   const float ux = q[24], uy = q[28], uz = q[32], vx = q[36], vy = q[40], vz = q[44];
   const float wx = q[48], wy = q[52], wz = q[56];
-  const float8 denom = nx * D.x + ny * D.y + nz * D.z;
-  const float8 qox = qx - o.x, qoy = qy - o.y, qoz = qz - o.z;
-  const float8 s = nx * qox + ny * qoy + nz * qoz;
-  const float8 t = s / denom;
-  mask8 hit = (t > 0.0f) & (t < t_max);
-  const float nax = fabs(nx), nay = fabs(ny), naz = fabs(nz);
-  hit &= fabs(denom) > GAMMA(3) * (nax * fabs(D.x) + nay * fabs(D.y) + naz * fabs(D.z));  // parallel
-  const float8 s_error = GAMMA(4) * (nax * (fabs(qx) + fabs(o.x)) + nay * (fabs(qy) + fabs(o.y)) +
-                                     naz * (fabs(qz) + fabs(o.z))) +
-                         GAMMA(4) * sqrt(qox * qox + qoy * qoy + qoz * qoz);
-  hit &= fabs(s) > s_error;  // the origin on the plane
-  const float8 dx = (o.x + t * D.x) - qx, dy = (o.y + t * D.y) - qy, dz = (o.z + t * D.z) - qz;
-  const float8 a = wx * (dy * vz - dz * vy) + wy * (dz * vx - dx * vz) + wz * (dx * vy - dy * vx);
-  const float8 b = wx * (uy * dz - uz * dy) + wy * (uz * dx - ux * dz) + wz * (ux * dy - uy * dx);
-  hit &= (a >= 0.0f) & (a <= 1.0f) & (b >= 0.0f) & (b <= 1.0f);
-  *t_out = t;
-  *a_out = a;
-  *b_out = b;
-  return hit;
+  QUAD_ROOT_LANES(float8, mask8, nx, ny, nz, qx, qy, qz, ux, uy, uz, vx, vy, vz, wx, wy, wz, o, D, t_max);
 }
 // [end]
 #pragma OPENCL FP_CONTRACT ON

@@ -400,7 +400,7 @@ TEST_CASE("extreme case: an empty scene packs to empty arrays and the bare optio
   CHECK(g.lights.empty());
   CHECK(g.background.x == 0.25f);
   // Nothing the eight-lane loop lacks: it is chosen (and sees only the background).
-  CHECK(build_options(g.features) == "-cl-std=CL1.2 -DMETHOD_MIS -DMAX_DEPTH=0 -DRR_DEPTH=3 -DPATH_LANES");
+  CHECK(build_options(g.features) == "-cl-std=CL1.2 -DMETHOD_MIS -DMAX_DEPTH=0 -DRR_DEPTH=3 -DPATH_LANES=8");
   CHECK_THROWS_AS(pack_scene(sc, 0, 10, depth(8)), error);
   CHECK_THROWS_WITH_AS(pack_scene(sc, 1, 1, depth(-1)), doctest::Contains("depth"), error);
 }

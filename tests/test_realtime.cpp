@@ -759,7 +759,7 @@ TEST_CASE("the kernel's quads four at a time: each lane is quad.hpp's test (near
   // The eight-lane loop's tests (PATH_LANES) on the same rays, eight at a time (the last work
   // item has lanes without a ray): quad_root's nearest quad and t, bit for bit, and its any hit.
   const auto lanes_prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
-                                                  "-cl-std=CL1.2 -DHAS_QUADS -DMETHOD_MIS -DPATH_LANES -DPROBES");
+                                                  "-cl-std=CL1.2 -DHAS_QUADS -DMETHOD_MIS -DPATH_LANES=8 -DPROBES");
   const auto lk = cl::make_kernel(lanes_prog, "probe_lanes");
   const auto no_spheres = ctx->make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_sphere));
   const auto lanes_out = ctx->make_buffer(CL_MEM_WRITE_ONLY, 3 * std::size_t(n) * sizeof(cl_float4));
@@ -849,7 +849,7 @@ TEST_CASE("the eight-lane loop's spheres: sphere.hpp's root and point bit for bi
   const std::vector<cl_float4> in = probe_rays(rays);
   const int n = int(rays.size());
   const auto prog = cl::build_program_files(*ctx, {"kernels/rng.cl", "kernels/pathtrace.cl"},
-                                            "-cl-std=CL1.2 -DHAS_SPHERES -DMETHOD_MIS -DPATH_LANES -DPROBES");
+                                            "-cl-std=CL1.2 -DHAS_SPHERES -DMETHOD_MIS -DPATH_LANES=8 -DPROBES");
   const auto k = cl::make_kernel(prog, "probe_lanes");
   const auto spheres = ctx->make_buffer(CL_MEM_READ_ONLY, g.spheres.size() * sizeof(gpu_sphere), g.spheres.data());
   const auto no_quads = ctx->make_buffer(CL_MEM_READ_ONLY, sizeof(gpu_quad4));

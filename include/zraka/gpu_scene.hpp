@@ -572,6 +572,11 @@ inline bool lanes_cover(const gpu_features& f) {
 }
 // How many pixels a work item of the lanes loop renders: the kernel's float8.
 constexpr int gpu_path_lanes = 8;
+// Pixels per work item of the kernel built for f: gpu_path_lanes with the eight-lane loop, else
+// 1 (the all-features kernel is always the one-path loop). build_options and the launch both ask.
+inline int gpu_pixels_per_item(const gpu_features& f, bool all_features) {
+  return !all_features && lanes_cover(f) ? gpu_path_lanes : 1;
+}
 
 // [listing gpu-options]
 // The -D switches for a scene's features; all_features compiles every code path (the
@@ -606,7 +611,7 @@ inline std::string build_options(const gpu_features& f, bool all_features = fals
   o += f.method == integrator::naive ? " -DMETHOD_NAIVE" : f.method == integrator::nee ? " -DMETHOD_NEE" : " -DMETHOD_MIS";
   if (f.weak_seed) o += " -DWEAK_SEED";
   o += " -DMAX_DEPTH=" + std::to_string(f.max_depth) + " -DRR_DEPTH=" + std::to_string(f.rr_depth);
-  if (!all_features && lanes_cover(f)) o += " -DPATH_LANES";  // all features: the one-path loop
+  if (const int n = gpu_pixels_per_item(f, all_features); n > 1) o += " -DPATH_LANES=" + std::to_string(n);
   return o;
 }
 // [end]

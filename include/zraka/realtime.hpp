@@ -98,7 +98,7 @@ class gpu_renderer {
   std::uint64_t seed_;
   gpu_scene scene_;
   std::string options_;
-  bool lanes_ = false;  // built with PATH_LANES: eight pixels per work item
+  int pixels_per_item_ = 1;  // gpu_pixels_per_item: 8 with the eight-lane loop
   double build_seconds_ = 0;
   cl::program_handle program_;
   cl::kernel_handle kernel_;
@@ -118,7 +118,7 @@ ZRAKA_OPENCL_FN gpu_renderer::gpu_renderer(const cl::context& c, const gpu_scene
     throw error("image size " + std::to_string(width) + "x" + std::to_string(height) +
                 " is out of range (1..16384)");
   options_ = build_options(s.features, all_features);
-  lanes_ = !all_features && lanes_cover(s.features);
+  pixels_per_item_ = gpu_pixels_per_item(s.features, all_features);
   stopwatch clock;
   program_ = cl::build_program_files(c, {"kernels/rng.cl", kernel_file}, options_);
   kernel_ = cl::make_kernel(program_, "render");
@@ -160,9 +160,9 @@ ZRAKA_OPENCL_FN void gpu_renderer::launch(std::uint32_t n) {
                cl_uint(width_), cl_uint(height_), cl_uint(samples_), cl_uint(n),
                cl_ulong(seed_), bg, textures_, texels_, tri_uvs_, cl_int(s.triangle_uvs.empty() ? 0 : 1), env_,
                env_tables_, noise_, srgb_steps_);
-  // The lanes loop (PATH_LANES) renders gpu_path_lanes pixels of a row in each work item.
-  const std::size_t items = lanes_ ? std::size_t((width_ + gpu_path_lanes - 1) / gpu_path_lanes) : std::size_t(width_);
-  cl::run_2d(ctx_, kernel_, items, std::size_t(height_));
+  // The lanes loop (PATH_LANES) renders several pixels of a row in each work item.
+  const int per_item = pixels_per_item_;
+  cl::run_2d(ctx_, kernel_, std::size_t((width_ + per_item - 1) / per_item), std::size_t(height_));
   samples_ += n;
 }
 // The camera moved (or anything else changed): the next launch starts the sums afresh.
