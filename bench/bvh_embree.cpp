@@ -89,10 +89,10 @@ void trace_embree(const embree_scene& e, const std::vector<rayf>& rays, std::vec
 }
 // [end]
 
-void trace_ours(const triangle_bvh& bvh, const std::vector<rayf>& rays, std::vector<result>& out) {
+void trace_ours(const triangle_bvh& bvh, const std::vector<rayf>& rays, std::vector<result>& out, simd_level simd) {
   for (std::size_t i = 0; i < rays.size(); ++i) {
     triangle_bvh_hit h;
-    out[i] = bvh.intersect(rays[i], 0.0f, infinity<float>, h) ? result{h.t, h.triangle} : result{};
+    out[i] = bvh.intersect(rays[i], 0.0f, infinity<float>, h, nullptr, simd) ? result{h.t, h.triangle} : result{};
   }
 }
 
@@ -121,6 +121,8 @@ int main(int argc, char** argv) {
   app.add_option("--rays", random_count, "number of incoherent rays of each kind (random, sphere)");
   app.add_option("--repeat", repeat, "timing passes per measurement (the best is kept)");
   app.add_option("--seed", seed, "seed of the random rays");
+  std::string simd_name = to_string(cpu_simd());
+  app.add_option("--simd", simd_name, "our BVH's SIMD level: avx2, sse or scalar (default: the best this CPU runs)");
   bvh_build_options opt = triangle_bvh::default_options();
   app.add_option("--leaf", opt.max_leaf_size, "our BVH: most triangles per leaf");
   app.add_option("--traversal-cost", opt.traversal_cost, "our BVH: SAH cost of a box test (a triangle test = 1)");
@@ -130,10 +132,15 @@ int main(int argc, char** argv) {
 
   return guarded([&] {
     if (repeat < 1) throw error("--repeat must be at least 1");
+    if (simd_name != "avx2" && simd_name != "sse" && simd_name != "scalar")
+      throw error("--simd must be avx2, sse or scalar, got '" + simd_name + "'");
+    const simd_level simd = simd_name == "avx2" ? simd_level::avx2 : simd_name == "sse" ? simd_level::sse : simd_level::scalar;
+    if (usable_simd(simd) != simd) throw error("--simd " + simd_name + ": this processor (or build) does not run it");
     if (random_count < 1) throw error("--rays must be at least 1");
     for (const int d : divs_list)
       if (d < 1 || d > 512) throw error("--divs must be in 1..512, got " + std::to_string(d));
     const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
+    std::printf("ours: 8-wide nodes, %s; Embree: its own choice for this processor\n", to_string(simd));
     std::printf("%6s %9s %-8s %8s %12s %12s %7s %9s\n", "divs", "triangles", "rays", "B/tri",
                 "ours Mray/s", "Embree Mray/s", "ratio", "agreement");
     stopwatch total;
@@ -161,7 +168,7 @@ int main(int argc, char** argv) {
         double best_ours = infinity<double>, best_embree = infinity<double>;
         for (int k = 0; k < repeat; ++k) {
           double t0 = thread_seconds();
-          trace_ours(bvh, set.rays, ours);
+          trace_ours(bvh, set.rays, ours, simd);
           best_ours = std::min(best_ours, thread_seconds() - t0);
           t0 = thread_seconds();
           trace_embree(emb, set.rays, theirs);

@@ -24,4 +24,5 @@
 #include <zraka/scene_query.hpp>
 #include <zraka/sppm.hpp>
 #include <zraka/tessellate.hpp>
+#include <zraka/triangle_bvh.hpp>
 #include <zraka/texture.hpp>

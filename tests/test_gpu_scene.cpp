@@ -121,7 +121,7 @@ TEST_CASE("triangles: the triangle BVH's nodes byte for byte, materials by input
     const auto t = m.triangle(i);
     tris.push_back({vec3_t<float>(t.a), vec3_t<float>(t.b), vec3_t<float>(t.c)});
   }
-  const triangle_bvh bvh(tris);
+  const triangle_bvh4 bvh(tris);
   REQUIRE(g.nodes.size() == bvh.nodes().size());
   CHECK(std::memcmp(g.nodes.data(), bvh.nodes().data(), g.nodes.size() * sizeof(gpu_node4)) == 0);
   CHECK(g.triangles.size() == bvh.positions());

@@ -435,7 +435,7 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
     note_material(mo.material);
   }
   if (!tris.empty()) {
-    const triangle_bvh bvh(tris);
+    const triangle_bvh4 bvh(tris);
     // The BVH's positions, the empty lanes of its blocks of four included (a leaf's child
     // indexes them; the kernel reads only a leaf's count, never an empty lane, which gets zeros
     // rather than the CPU's NaN vertices).

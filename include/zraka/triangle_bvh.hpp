@@ -1,8 +1,11 @@
 #pragma once
 // A BVH specialised for triangle meshes (book 5.2): compact and fast, for the teapot at a million
-// triangles. The tree comes from bvh.hpp's builder (in float), collapsed to four children per
-// node by wide_bvh.hpp, whose box test and front-to-back walk it shares with the scene's object
-// BVH. What is special here is the leaf:
+// triangles. The tree comes from bvh.hpp's builder (in float), collapsed to N children per node
+// by wide_bvh.hpp, whose box test and front-to-back walk it shares with the scene's object BVH:
+// triangle_bvh has eight (AVX2 tests them at once where the processor has it, SSE in two rounds
+// elsewhere: simd.hpp), triangle_bvh4 four (the OpenCL kernel's layout, gpu_scene.hpp). The walk
+// is compiled once per SIMD level, and each query takes the best level the processor runs.
+// What is special here is the leaf:
 // * the triangles copied in leaf order as the watertight test (triangle.hpp) wants them, four to
 //   a block (watertight4.hpp's triangle4: the vertices A, B, C and the input index of each, 40
 //   bytes a triangle), a leaf being whole blocks, its last one filled up with empty lanes;
@@ -18,6 +21,7 @@
 #include <zraka/bvh.hpp>
 #include <zraka/compiled.hpp>
 #include <zraka/mesh.hpp>
+#include <zraka/simd.hpp>
 #include <zraka/triangle.hpp>
 #include <zraka/watertight4.hpp>
 #include <zraka/wide_bvh.hpp>
@@ -27,6 +31,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace zraka {
@@ -49,6 +54,7 @@ static_assert(sizeof(packed_triangle) == 40);
 
 // The nodes are wide_bvh.hpp's; a leaf's entries are positions in the blocks of four (triangle(k)).
 using triangle_bvh_node4 = bvh_node4;
+using triangle_bvh_node8 = bvh_node8;
 
 // [listing bvh-ray]
 // A ray prepared for many box and triangle tests: wide_bvh.hpp's half for the boxes (the
@@ -64,8 +70,9 @@ struct bvh_ray {
 };
 // [end]
 
-class triangle_bvh {
+template <int N> class wide_triangle_bvh {
  public:
+  using node = wide_node<N>;
   // Defaults measured on the teapot (book 5.2): the SAH prices a leaf by its blocks of four (a
   // leaf of 5 costs as much as one of 8), so leaves fill their blocks; leaves of up to 16 and a
   // box test priced at 3 block tests give the fastest walk and the least memory.
@@ -77,13 +84,13 @@ class triangle_bvh {
     return o;
   }
 
-  triangle_bvh() = default;
-  explicit triangle_bvh(const std::vector<triangle_t<float>>& tris,
-                        const bvh_build_options& opt = default_options()) {
+  wide_triangle_bvh() = default;
+  explicit wide_triangle_bvh(const std::vector<triangle_t<float>>& tris,
+                             const bvh_build_options& opt = default_options()) {
     build(tris, opt);
   }
   template <class T>
-  explicit triangle_bvh(const mesh_t<T>& m, const bvh_build_options& opt = default_options()) {
+  explicit wide_triangle_bvh(const mesh_t<T>& m, const bvh_build_options& opt = default_options()) {
     std::vector<triangle_t<float>> tris(m.triangle_count());
     for (std::size_t i = 0; i < tris.size(); ++i) {
       const auto& f = m.triangles[i];
@@ -93,7 +100,7 @@ class triangle_bvh {
     build(tris, opt);
   }
 
-  const std::vector<triangle_bvh_node4>& nodes() const { return nodes_; }
+  const std::vector<node>& nodes() const { return nodes_; }
   const std::vector<triangle4>& blocks() const { return blocks_; }  // in leaf order
   // Triangle k of the blocks (lane k % 4 of block k / 4): a leaf's triangles are the positions
   // [child, child + count) of its node; empty lanes have id UINT32_MAX.
@@ -108,26 +115,28 @@ class triangle_bvh {
   int depth() const { return depth_; }
   // Memory of nodes and triangle data, and that per input triangle.
   std::size_t bytes() const {
-    return nodes_.size() * sizeof(triangle_bvh_node4) + blocks_.size() * sizeof(triangle4);
+    return nodes_.size() * sizeof(node) + blocks_.size() * sizeof(triangle4);
   }
   double bytes_per_triangle() const {
     return input_count_ ? double(bytes()) / double(input_count_) : 0.0;
   }
 
-  // The queries are compiled once with the walk they instantiate (compiled.hpp), below the class.
+  // The queries are defined below the class (and compiled once in zraka::compiled, compiled.hpp).
+  // `simd` is the level of SIMD instructions the walk uses (simd.hpp): by default the best this
+  // processor runs, never more than that (usable_simd). Every level gives the same hits.
   // The nearest hit with t in (t_min, t_max).
-  ZRAKA_COMPILED_FN bool intersect(const ray_t<float>& r, float t_min, float t_max, triangle_bvh_hit& h,
-                                   bvh_stats* stats = nullptr) const;
+  bool intersect(const ray_t<float>& r, float t_min, float t_max, triangle_bvh_hit& h, bvh_stats* stats = nullptr,
+                 simd_level simd = cpu_simd()) const;
   // Any hit with t in (t_min, t_max): for shadow rays; stops at the first.
-  ZRAKA_COMPILED_FN bool occluded(const ray_t<float>& r, float t_min, float t_max, bvh_stats* stats = nullptr) const;
+  bool occluded(const ray_t<float>& r, float t_min, float t_max, bvh_stats* stats = nullptr,
+                simd_level simd = cpu_simd()) const;
   // Every triangle, one at a time with the scalar test and the same tie rule: the reference the
   // BVH and its four-lane leaf must equal.
-  ZRAKA_COMPILED_FN bool intersect_brute_force(const ray_t<float>& r, float t_min, float t_max,
-                                               triangle_bvh_hit& h) const;
+  bool intersect_brute_force(const ray_t<float>& r, float t_min, float t_max, triangle_bvh_hit& h) const;
 
  private:
-  // The tree over the triangles, then their blocks; compiled once (compiled.hpp).
-  ZRAKA_COMPILED_FN void build(const std::vector<triangle_t<float>>& tris, const bvh_build_options& opt);
+  // The tree over the triangles, then their blocks.
+  void build(const std::vector<triangle_t<float>>& tris, const bvh_build_options& opt);
 
   // [listing packed-watertight]
   // triangle.hpp's intersect_watertight() on the packed data: the same two calls (the
@@ -154,12 +163,12 @@ class triangle_bvh {
   // [listing block-test]
   // The four triangles of block q, as test() would take them one after the other: the four-lane
   // test (watertight4.hpp) finds the lanes hit, with their t, u and v, and the lanes whose edge
-  // function rounded to 0. Without the four-lane test, test() on each lane.
-  template <class Ray4>
+  // function rounded to 0. Without the four-lane test (or at the scalar level), test() on each lane.
+  template <class Ray4, class Simd>
   static bool test_block(const triangle4& q, const bvh_ray& r, [[maybe_unused]] const Ray4& r4, float t_min,
-                         float t_max, triangle_bvh_hit& h) {
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
-    if constexpr (detail::watertight4_available) {
+                         float t_max, triangle_bvh_hit& h, Simd) {
+#if ZRAKA_HAS_SSE
+    if constexpr (detail::watertight4_available && !std::is_same_v<Simd, simd_scalar>) {
       // A lane can only be accepted with t < t_max or at a tie with the hit so far.
       const float bound = h.triangle != UINT32_MAX ? std::max(t_max, h.t) : t_max;
       lanes4 l;
@@ -207,9 +216,8 @@ class triangle_bvh {
 
   // [listing triangle-traverse]
   // wide_bvh.hpp's walk with this leaf: its blocks of four triangles, each hit lowering t_max.
-  template <bool count>
-  bool nearest(const bvh_ray& r, float t_min, float t_max, triangle_bvh_hit& h,
-               bvh_stats* stats) const {
+  template <class Simd>
+  bool nearest(const bvh_ray& r, float t_min, float t_max, triangle_bvh_hit& h, bvh_stats* stats, Simd simd) const {
     if (!r.valid) return false;
     const auto r4 = ray4(r);
     return wide_nearest(
@@ -217,18 +225,18 @@ class triangle_bvh {
         [&](std::uint32_t first, std::uint32_t n, float& t_cull) {
           bool found = false;
           for (std::uint32_t k = 0; k < n; k += 4)
-            if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_cull, h)) {
+            if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_cull, h, simd)) {
               found = true;
               t_cull = h.t;
             }
           return found;
         },
-        count ? stats : nullptr);
+        stats, simd);
   }
   // [end]
 
-  template <bool count>
-  bool any(const bvh_ray& r, float t_min, float t_max, bvh_stats* stats) const {
+  template <class Simd>
+  bool any(const bvh_ray& r, float t_min, float t_max, bvh_stats* stats, Simd simd) const {
     if (!r.valid) return false;
     const auto r4 = ray4(r);
     return wide_any(
@@ -236,42 +244,89 @@ class triangle_bvh {
         [&](std::uint32_t first, std::uint32_t n) {
           for (std::uint32_t k = 0; k < n; k += 4) {
             triangle_bvh_hit ignored;
-            if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_max, ignored)) return true;
+            if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_max, ignored, simd)) return true;
           }
           return false;
         },
-        count ? stats : nullptr);
+        stats, simd);
   }
+
+  // [listing simd-walks]
+  // The walks compiled once per SIMD level, with everything they call inlined into them
+  // (flatten): the AVX2 ones are then AVX2 code throughout, the leaf's four lanes included, and
+  // are only called on a processor that has it. Without statistics, a second copy that counts
+  // nothing.
+  template <class Simd> bool nearest_at(const bvh_ray& r, float t_min, float t_max, triangle_bvh_hit& h,
+                                        bvh_stats* stats, Simd simd) const {
+    return stats ? nearest(r, t_min, t_max, h, stats, simd) : nearest(r, t_min, t_max, h, nullptr, simd);
+  }
+  [[gnu::flatten]] bool nearest_scalar(const bvh_ray& r, float t_min, float t_max, triangle_bvh_hit& h,
+                                       bvh_stats* stats) const {
+    return nearest_at(r, t_min, t_max, h, stats, simd_scalar{});
+  }
+  [[gnu::flatten]] bool nearest_sse(const bvh_ray& r, float t_min, float t_max, triangle_bvh_hit& h,
+                                    bvh_stats* stats) const {
+    return nearest_at(r, t_min, t_max, h, stats, simd_sse{});
+  }
+  ZRAKA_TARGET_AVX2 [[gnu::flatten]] bool nearest_avx2(const bvh_ray& r, float t_min, float t_max,
+                                                       triangle_bvh_hit& h, bvh_stats* stats) const {
+    return nearest_at(r, t_min, t_max, h, stats, simd_avx2{});
+  }
+  [[gnu::flatten]] bool any_scalar(const bvh_ray& r, float t_min, float t_max, bvh_stats* stats) const {
+    return stats ? any(r, t_min, t_max, stats, simd_scalar{}) : any(r, t_min, t_max, nullptr, simd_scalar{});
+  }
+  [[gnu::flatten]] bool any_sse(const bvh_ray& r, float t_min, float t_max, bvh_stats* stats) const {
+    return stats ? any(r, t_min, t_max, stats, simd_sse{}) : any(r, t_min, t_max, nullptr, simd_sse{});
+  }
+  ZRAKA_TARGET_AVX2 [[gnu::flatten]] bool any_avx2(const bvh_ray& r, float t_min, float t_max,
+                                                   bvh_stats* stats) const {
+    return stats ? any(r, t_min, t_max, stats, simd_avx2{}) : any(r, t_min, t_max, nullptr, simd_avx2{});
+  }
+  // [end]
 
   // The four-lane test's ray, or nothing where there is none.
   // (An explicit return type: clang refuses a deduced one used above its definition.)
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+#if ZRAKA_HAS_SSE
   static detail::watertight_ray4 ray4(const bvh_ray& r) { return detail::watertight_ray4(r.shear); }
 #else
   static bool ray4(const bvh_ray& r) { return r.valid; }
 #endif
 
-  std::vector<triangle_bvh_node4> nodes_;
+  std::vector<node> nodes_;
   std::vector<triangle4> blocks_;
   std::size_t triangle_count_ = 0;
   std::size_t input_count_ = 0;
   int depth_ = 0;
 };
 
-#if ZRAKA_COMPILED_DEFINITIONS
-ZRAKA_COMPILED_FN bool triangle_bvh::intersect(const ray_t<float>& r, float t_min, float t_max, triangle_bvh_hit& h,
-                                               bvh_stats* stats) const {
+template <int N>
+bool wide_triangle_bvh<N>::intersect(const ray_t<float>& r, float t_min, float t_max, triangle_bvh_hit& h,
+                                     bvh_stats* stats, simd_level simd) const {
   h = {};
-  return stats ? nearest<true>(bvh_ray(r), t_min, t_max, h, stats)
-               : nearest<false>(bvh_ray(r), t_min, t_max, h, nullptr);
+  const bvh_ray br(r);
+  switch (usable_simd(simd)) {
+    case simd_level::avx2: return nearest_avx2(br, t_min, t_max, h, stats);
+    case simd_level::sse: return nearest_sse(br, t_min, t_max, h, stats);
+    case simd_level::scalar: break;
+  }
+  return nearest_scalar(br, t_min, t_max, h, stats);
 }
 
-ZRAKA_COMPILED_FN bool triangle_bvh::occluded(const ray_t<float>& r, float t_min, float t_max, bvh_stats* stats) const {
-  return stats ? any<true>(bvh_ray(r), t_min, t_max, stats) : any<false>(bvh_ray(r), t_min, t_max, nullptr);
+template <int N>
+bool wide_triangle_bvh<N>::occluded(const ray_t<float>& r, float t_min, float t_max, bvh_stats* stats,
+                                    simd_level simd) const {
+  const bvh_ray br(r);
+  switch (usable_simd(simd)) {
+    case simd_level::avx2: return any_avx2(br, t_min, t_max, stats);
+    case simd_level::sse: return any_sse(br, t_min, t_max, stats);
+    case simd_level::scalar: break;
+  }
+  return any_scalar(br, t_min, t_max, stats);
 }
 
-ZRAKA_COMPILED_FN bool triangle_bvh::intersect_brute_force(const ray_t<float>& r, float t_min, float t_max,
-                                                           triangle_bvh_hit& h) const {
+template <int N>
+bool wide_triangle_bvh<N>::intersect_brute_force(const ray_t<float>& r, float t_min, float t_max,
+                                                 triangle_bvh_hit& h) const {
   h = {};
   const bvh_ray br(r);
   if (!br.valid) return false;
@@ -286,7 +341,8 @@ ZRAKA_COMPILED_FN bool triangle_bvh::intersect_brute_force(const ray_t<float>& r
   return found;
 }
 
-ZRAKA_COMPILED_FN void triangle_bvh::build(const std::vector<triangle_t<float>>& tris, const bvh_build_options& opt) {
+template <int N>
+void wide_triangle_bvh<N>::build(const std::vector<triangle_t<float>>& tris, const bvh_build_options& opt) {
   input_count_ = tris.size();
   std::vector<aabb_t<float>> boxes(tris.size());
   std::vector<vec3_t<float>> centroids(tris.size());
@@ -304,15 +360,15 @@ ZRAKA_COMPILED_FN void triangle_bvh::build(const std::vector<triangle_t<float>>&
   const bvh_t<float> b = build_bvh(boxes, centroids, opt);
   depth_ = b.depth;
   triangle_count_ = b.order.size();
-  nodes_ = collapse4(b);
+  nodes_ = collapse<N>(b);
   // Each leaf's triangles to whole blocks of four, in leaf order; its child index becomes the
   // position of its first triangle there (4 times its first block).
   triangle4 empty;
   for (auto& row : empty.v)
     for (float& x : row) x = std::numeric_limits<float>::quiet_NaN();
   for (std::uint32_t& id : empty.id) id = UINT32_MAX;
-  for (bvh_node4& n : nodes_)
-    for (int k = 0; k < 4; ++k) {
+  for (node& n : nodes_)
+    for (int k = 0; k < N; ++k) {
       if (n.count[k] == 0) continue;
       const std::uint32_t first = n.child[k];
       n.child[k] = std::uint32_t(4 * blocks_.size());
@@ -326,6 +382,10 @@ ZRAKA_COMPILED_FN void triangle_bvh::build(const std::vector<triangle_t<float>>&
       }
     }
 }
-#endif
+
+using triangle_bvh = wide_triangle_bvh<8>;   // the CPU's
+using triangle_bvh4 = wide_triangle_bvh<4>;  // the OpenCL kernel's layout (gpu_scene.hpp)
+ZRAKA_INSTANCE(class wide_triangle_bvh<8>)   // compiled.hpp
+ZRAKA_INSTANCE(class wide_triangle_bvh<4>)
 
 }  // namespace zraka

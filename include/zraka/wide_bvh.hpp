@@ -1,20 +1,21 @@
 #pragma once
-// The wide BVH (book 5.2): bvh.hpp's binary tree collapsed into nodes of four children whose
-// boxes are tested at once, one SSE instruction per step for all four. One layout, one box test
-// and one traversal serve both users:
-// * triangle_bvh.hpp, a mesh's triangles (float rays);
+// The wide BVH (book 5.2): bvh.hpp's binary tree collapsed into nodes of N children (4 or 8)
+// whose boxes are tested at once, one SIMD instruction per step for all of them (simd.hpp: SSE
+// takes four, AVX2 eight). One layout, one box test and one traversal, for any N, serve both users:
+// * triangle_bvh.hpp, a mesh's triangles (float rays), eight children a node;
 // * the scene's object BVH (scene.hpp, scene_query.hpp): spheres, quads, triangles, meshes and
-//   user shapes, in float or double.
+//   user shapes, in float or double, four children a node.
 // The boxes are stored in float whatever the tree's precision, rounded outward, so that a float
 // box contains its double box; a double ray is made a float one the same careful way (its origin
 // rounded towards the side that lengthens each slab). The box test therefore keeps every box the
 // exact test keeps, and the hits are those of the readable binary traversal (bvh_intersect), as
 // tests/test_wide_bvh.cpp checks; only the order of the walk differs.
 // No allocation per ray: the traversal stack is a fixed array, sized by bvh_max_depth, which the
-// builder respects (bvh.hpp) and collapse4() checks.
+// builder respects (bvh.hpp) and collapse() checks.
 #include <zraka/aabb.hpp>
 #include <zraka/bvh.hpp>
 #include <zraka/error.hpp>
+#include <zraka/simd.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -27,24 +28,28 @@
 #include <type_traits>
 #include <vector>
 
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+#if ZRAKA_HAS_SSE
 #include <immintrin.h>
 #endif
 
 namespace zraka {
 
 // [listing compact-node]
-// A node with four children (a binary BVH with every other level removed). Child k's box is
-// box[a][k] <= x[a] <= box[3 + a][k] (rows lo.x, lo.y, lo.z, hi.x, hi.y, hi.z). A child is a leaf
-// of count[k] entries from position child[k] of the primitive order, or an inner node
-// nodes[child[k]] (count 0). Unused slots have an empty box, which no ray hits.
-struct alignas(64) bvh_node4 {
-  float box[6][4];
-  std::uint32_t child[4];
-  std::uint32_t count[4];
+// A node with N children (4: a binary BVH with every other level removed; 8: two of every three).
+// Child k's box is box[a][k] <= x[a] <= box[3 + a][k] (rows lo.x, lo.y, lo.z, hi.x, hi.y, hi.z).
+// A child is a leaf of count[k] entries from position child[k] of the primitive order, or an
+// inner node nodes[child[k]] (count 0). Unused slots have an empty box, which no ray hits.
+template <int N> struct alignas(64) wide_node {
+  static constexpr int width = N;
+  float box[6][N];
+  std::uint32_t child[N];
+  std::uint32_t count[N];
 };
+using bvh_node4 = wide_node<4>;
+using bvh_node8 = wide_node<8>;
 // [end]
 static_assert(sizeof(bvh_node4) == 128, "two cache lines");
+static_assert(sizeof(bvh_node8) == 256, "four cache lines");
 
 // x rounded to a float towards -inf (down) or +inf (up): float(x) rounds to nearest, one step
 // fixes the side. Beyond float's range: down(1e300) = FLT_MAX, up(1e300) = inf. The step is
@@ -115,43 +120,29 @@ struct box4_ray {
 // [end]
 
 // [listing fast-slab]
-// The slab test of a node's four child boxes at once: the same few operations on four lanes,
-// one SSE instruction each on x86-64 (SSE2 is part of x86-64, so any such processor runs it;
-// GCC did not vectorise the plain loop, which other machines use and which gives the same
-// results). A zero direction component gives inv = +-inf: the slab is then (-inf, inf) or empty,
-// except for an origin exactly in its plane, where 0 * inf = NaN; max and min below return their
-// second operand when the first is NaN, so a NaN keeps the slab open: the careful side. The far t
-// is widened by 1 + 2 gamma(4), once for all three axes (a positive factor commutes with the
-// minimum): aabb.hpp's gamma(3) for the subtraction, the reciprocal and the product, and one
-// more for a double reciprocal rounded to float. An unused slot is left out by its empty box
+// The slab test of a node's N child boxes at once: the same few operations on every lane. Here in
+// plain loops (simd_scalar), which any machine runs; below as SSE instructions on four lanes at a
+// time and AVX2 on eight (simd.hpp), which give the same results. A zero direction component
+// gives inv = +-inf: the slab is then (-inf, inf) or empty, except for an origin exactly in its
+// plane, where 0 * inf = NaN; the maximum and minimum below take their second operand when the
+// first is NaN (as SSE's and AVX2's do), so a NaN keeps the slab open: the careful side. The far
+// t is widened by 1 + 2 gamma(4), once for all three axes (a positive factor commutes with the
+// minimum): aabb.hpp's gamma(3) for the subtraction, the reciprocal and the product, and one more
+// for a double reciprocal rounded to float. An unused slot is left out by its empty box
 // (lo > hi), not by its slabs: an origin beyond float's range is infinite in float, and
 // inf - inf = NaN would keep them open. Returns a bit mask of the boxes hit and their entry t.
-inline unsigned hit_boxes4(const bvh_node4& n, const box4_ray& r, float t_min, float t_max,
-                           float (&t_enter)[4]) {
-  constexpr float widen = 1.0f + 2.0f * gamma<float>(4);
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)  // the same operations, four lanes at once
-  __m128 t0 = _mm_set1_ps(t_min), t1 = _mm_set1_ps(infinity<float>);
-  for (int a = 0; a < 3; ++a) {
-    const __m128 inv = _mm_set1_ps(r.inv_direction[a]);
-    const __m128 on = _mm_set1_ps(r.near_origin[a]), of = _mm_set1_ps(r.far_origin[a]);
-    const __m128 tn = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[r.near_row[a]]), on), inv);
-    const __m128 tf = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[r.far_row[a]]), of), inv);
-    t0 = _mm_max_ps(tn, t0);  // tn > t0 ? tn : t0, so a NaN tn leaves t0
-    t1 = _mm_min_ps(tf, t1);  // tf < t1 ? tf : t1
-  }
-  _mm_storeu_ps(t_enter, t0);
-  const __m128 used = _mm_cmple_ps(_mm_load_ps(n.box[0]), _mm_load_ps(n.box[3]));
-  const __m128 hit = _mm_and_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(widen))),
-                                _mm_and_ps(_mm_cmple_ps(t0, _mm_set1_ps(t_max)), used));
-  return unsigned(_mm_movemask_ps(hit));
-#else
-  float t0[4], t1[4];
-  for (int k = 0; k < 4; ++k) t0[k] = t_min, t1[k] = infinity<float>;
+constexpr float wide_slab_widen = 1.0f + 2.0f * gamma<float>(4);
+
+template <int N>
+unsigned hit_boxes(const wide_node<N>& n, const box4_ray& r, float t_min, float t_max, float (&t_enter)[N],
+                   simd_scalar) {
+  float t0[N], t1[N];
+  for (int k = 0; k < N; ++k) t0[k] = t_min, t1[k] = infinity<float>;
   for (int a = 0; a < 3; ++a) {
     const float inv = r.inv_direction[a];
     const float* near_side = n.box[r.near_row[a]];
     const float* far_side = n.box[r.far_row[a]];
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < N; ++k) {
       const float tn = (near_side[k] - r.near_origin[a]) * inv;
       const float tf = (far_side[k] - r.far_origin[a]) * inv;
       t0[k] = tn > t0[k] ? tn : t0[k];
@@ -159,27 +150,94 @@ inline unsigned hit_boxes4(const bvh_node4& n, const box4_ray& r, float t_min, f
     }
   }
   unsigned mask = 0;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < N; ++k) {
     t_enter[k] = t0[k];
-    mask |= unsigned(t0[k] <= t1[k] * widen && t0[k] <= t_max && n.box[0][k] <= n.box[3][k]) << k;
+    mask |= unsigned(t0[k] <= t1[k] * wide_slab_widen && t0[k] <= t_max && n.box[0][k] <= n.box[3][k]) << k;
   }
   return mask;
-#endif
 }
 // [end]
 
+#if ZRAKA_HAS_SSE
+// [listing sse-slab]
+// The same on four lanes per SSE instruction (GCC did not vectorise the plain loop): N / 4 rounds.
+template <int N>
+unsigned hit_boxes(const wide_node<N>& n, const box4_ray& r, float t_min, float t_max, float (&t_enter)[N],
+                   simd_sse) {
+  unsigned mask = 0;
+  for (int h = 0; h < N; h += 4) {
+    __m128 t0 = _mm_set1_ps(t_min), t1 = _mm_set1_ps(infinity<float>);
+    for (int a = 0; a < 3; ++a) {
+      const __m128 inv = _mm_set1_ps(r.inv_direction[a]);
+      const __m128 on = _mm_set1_ps(r.near_origin[a]), of = _mm_set1_ps(r.far_origin[a]);
+      const __m128 tn = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[r.near_row[a]] + h), on), inv);
+      const __m128 tf = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[r.far_row[a]] + h), of), inv);
+      t0 = _mm_max_ps(tn, t0);  // tn > t0 ? tn : t0, so a NaN tn leaves t0
+      t1 = _mm_min_ps(tf, t1);  // tf < t1 ? tf : t1
+    }
+    _mm_storeu_ps(t_enter + h, t0);
+    const __m128 used = _mm_cmple_ps(_mm_load_ps(n.box[0] + h), _mm_load_ps(n.box[3] + h));
+    const __m128 hit = _mm_and_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(wide_slab_widen))),
+                                  _mm_and_ps(_mm_cmple_ps(t0, _mm_set1_ps(t_max)), used));
+    mask |= unsigned(_mm_movemask_ps(hit)) << h;
+  }
+  return mask;
+}
+// [end]
+#else
+template <int N>
+unsigned hit_boxes(const wide_node<N>& n, const box4_ray& r, float t_min, float t_max, float (&t_enter)[N],
+                   simd_sse) {
+  return hit_boxes(n, r, t_min, t_max, t_enter, simd_scalar{});
+}
+#endif
+
+#if ZRAKA_HAS_AVX2_TARGET && ZRAKA_HAS_SSE
+// [listing avx2-slab]
+// And on eight lanes per AVX2 instruction: an eight-wide node in one round. Compiled for AVX2
+// whatever the build's flags; run only where cpu_simd() found it (simd.hpp).
+ZRAKA_TARGET_AVX2 inline unsigned hit_boxes(const bvh_node8& n, const box4_ray& r, float t_min, float t_max,
+                                            float (&t_enter)[8], simd_avx2) {
+  __m256 t0 = _mm256_set1_ps(t_min), t1 = _mm256_set1_ps(infinity<float>);
+  for (int a = 0; a < 3; ++a) {
+    const __m256 inv = _mm256_set1_ps(r.inv_direction[a]);
+    const __m256 on = _mm256_set1_ps(r.near_origin[a]), of = _mm256_set1_ps(r.far_origin[a]);
+    const __m256 tn = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[r.near_row[a]]), on), inv);
+    const __m256 tf = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[r.far_row[a]]), of), inv);
+    t0 = _mm256_max_ps(tn, t0);
+    t1 = _mm256_min_ps(tf, t1);
+  }
+  _mm256_storeu_ps(t_enter, t0);
+  const __m256 used = _mm256_cmp_ps(_mm256_load_ps(n.box[0]), _mm256_load_ps(n.box[3]), _CMP_LE_OQ);
+  const __m256 near_enough = _mm256_cmp_ps(t0, _mm256_set1_ps(t_max), _CMP_LE_OQ);
+  const __m256 hit = _mm256_and_ps(
+      _mm256_cmp_ps(t0, _mm256_mul_ps(t1, _mm256_set1_ps(wide_slab_widen)), _CMP_LE_OQ),
+      _mm256_and_ps(near_enough, used));
+  return unsigned(_mm256_movemask_ps(hit));
+}
+// [end]
+#endif
+// Four boxes take four lanes whatever AVX2 offers; without AVX2, eight take two rounds of four.
+template <int N>
+unsigned hit_boxes(const wide_node<N>& n, const box4_ray& r, float t_min, float t_max, float (&t_enter)[N],
+                   simd_avx2)
+  requires(N != 8 || !(ZRAKA_HAS_AVX2_TARGET && ZRAKA_HAS_SSE))
+{
+  return hit_boxes(n, r, t_min, t_max, t_enter, simd_sse{});
+}
+
 namespace detail {
-// The four children of one wide node are binary nodes; they start as one node's two children.
-template <class T>
-std::uint32_t collapse4_node(const bvh_t<T>& b, std::uint32_t first, std::uint32_t second,
-                             std::vector<bvh_node4>& out) {
-  std::array<std::uint32_t, 4> kids{first, second, 0, 0};
+// The N children of one wide node are binary nodes; they start as one node's two children.
+template <int N, class T>
+std::uint32_t collapse_node(const bvh_t<T>& b, std::uint32_t first, std::uint32_t second,
+                            std::vector<wide_node<N>>& out) {
+  std::array<std::uint32_t, N> kids{first, second};
   int count = 2;
-  while (count < 4) {  // open the inner kid with the largest box
+  while (count < N) {  // open the inner kid with the largest box
     int widest = -1;
     T widest_area = -1;
     for (int k = 0; k < count; ++k) {
-      const bvh_node_t<T>& n = b.nodes[kids[k]];
+      const bvh_node_t<T>& n = b.nodes[kids[std::size_t(k)]];
       if (!n.leaf() && n.box.surface_area() > widest_area) {
         widest = k;
         widest_area = n.box.surface_area();
@@ -193,9 +251,10 @@ std::uint32_t collapse4_node(const bvh_t<T>& b, std::uint32_t first, std::uint32
   const auto me = static_cast<std::uint32_t>(out.size());
   out.emplace_back();
   for (int a = 0; a < 3; ++a)
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < N; ++k) {
       out[me].box[a][k] = infinity<float>;  // an empty box: unused slot
       out[me].box[3 + a][k] = -infinity<float>;
+      out[me].child[k] = out[me].count[k] = 0;
     }
   for (int k = 0; k < count; ++k) {
     const bvh_node_t<T>& n = b.nodes[kids[std::size_t(k)]];
@@ -204,7 +263,7 @@ std::uint32_t collapse4_node(const bvh_t<T>& b, std::uint32_t first, std::uint32
       out[me].box[3 + a][k] = float_up(n.box.hi[a]);
     }
     out[me].count[k] = n.count;
-    out[me].child[k] = n.leaf() ? n.index : collapse4_node(b, kids[std::size_t(k)] + 1, n.index, out);
+    out[me].child[k] = n.leaf() ? n.index : collapse_node<N>(b, kids[std::size_t(k)] + 1, n.index, out);
   }
   return me;
 }
@@ -212,21 +271,22 @@ std::uint32_t collapse4_node(const bvh_t<T>& b, std::uint32_t first, std::uint32
 
 // [listing collapse]
 // The wide nodes of binary tree b, the root's first: a wide node takes the binary node's two
-// children and, while it has fewer than four and one of them is an inner node, replaces the one
+// children and, while it has fewer than N and one of them is an inner node, replaces the one
 // with the largest box by its two children. Its inner children are collapsed in turn, depth
 // first. Boxes are rounded outward to float. A leaf's entries keep their positions in b.order.
 // Each wide level consumes at least one binary level, so the wide tree is no deeper than b.
-template <class T> std::vector<bvh_node4> collapse4(const bvh_t<T>& b) {
+template <int N, class T> std::vector<wide_node<N>> collapse(const bvh_t<T>& b) {
   if (b.depth > bvh_max_depth)
     throw error("wide BVH: the tree is " + std::to_string(b.depth) + " levels deep, the traversal stack holds " +
                 std::to_string(bvh_max_depth));
-  std::vector<bvh_node4> out;
+  std::vector<wide_node<N>> out;
   if (b.empty()) return out;
-  out.reserve(b.nodes.size() / 3 + 1);
+  out.reserve(b.nodes.size() / (N - 1) + 1);
   if (b.nodes[0].leaf()) {  // a root leaf: one wide node with one child
     auto& n = out.emplace_back();
     for (int a = 0; a < 3; ++a)
-      for (int k = 0; k < 4; ++k) n.box[a][k] = infinity<float>, n.box[3 + a][k] = -infinity<float>;
+      for (int k = 0; k < N; ++k) n.box[a][k] = infinity<float>, n.box[3 + a][k] = -infinity<float>;
+    for (int k = 0; k < N; ++k) n.child[k] = n.count[k] = 0;
     for (int a = 0; a < 3; ++a) {
       n.box[a][0] = float_down(b.nodes[0].box.lo[a]);
       n.box[3 + a][0] = float_up(b.nodes[0].box.hi[a]);
@@ -235,13 +295,13 @@ template <class T> std::vector<bvh_node4> collapse4(const bvh_t<T>& b) {
     n.count[0] = b.nodes[0].count;
     return out;
   }
-  detail::collapse4_node(b, 1, b.nodes[0].index, out);
+  detail::collapse_node<N>(b, 1, b.nodes[0].index, out);
   return out;
 }
 // [end]
 
-// Entries pushed per wide level: at most three left behind while the fourth is walked.
-constexpr int wide_stack_size = 3 * bvh_max_depth + 4;
+// Entries pushed per wide level: at most N - 1 left behind while the last is walked.
+template <int N> constexpr int wide_stack_size = (N - 1) * bvh_max_depth + N;
 
 // A box's entry t and a primitive's t round differently: a triangle on a box face (a shared edge
 // of two leaves, say) may hit at a t an ulp or two below the box's entry. So a box is passed over
@@ -251,10 +311,11 @@ constexpr float wide_cull_margin = 1.0f + 0x1p-18f;
 
 namespace detail {
 // The children to visit: those hit, or for a ray that is not exact every child but the unused.
-inline unsigned boxes_to_visit(const bvh_node4& n, const box4_ray& r, float t_min, float t_max, float (&t)[4]) {
-  if (r.exact) return hit_boxes4(n, r, t_min, t_max, t);
+template <int N, class Simd>
+unsigned boxes_to_visit(const wide_node<N>& n, const box4_ray& r, float t_min, float t_max, float (&t)[N], Simd simd) {
+  if (r.exact) return hit_boxes(n, r, t_min, t_max, t, simd);
   unsigned mask = 0;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < N; ++k) {
     t[k] = t_min;
     mask |= unsigned(n.box[0][k] <= n.box[3][k]) << k;
   }
@@ -263,16 +324,16 @@ inline unsigned boxes_to_visit(const bvh_node4& n, const box4_ray& r, float t_mi
 }  // namespace detail
 
 namespace detail {
-// Child k of n, pushed to be walked later: if it is an inner node, start fetching its two cache
+// Child k of n, pushed to be walked later: if it is an inner node, start fetching its cache
 // lines now (incoherent rays on a million triangles: 0.48 -> 0.57 of Embree's speed; the
 // leaves' triangles too: no gain).
-inline void prefetch_node([[maybe_unused]] const std::vector<bvh_node4>& nodes, [[maybe_unused]] const bvh_node4& n,
-                          [[maybe_unused]] int k) {
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+template <int N>
+void prefetch_node([[maybe_unused]] const std::vector<wide_node<N>>& nodes, [[maybe_unused]] const wide_node<N>& n,
+                   [[maybe_unused]] int k) {
+#if ZRAKA_HAS_SSE
   if (n.count[k] == 0) {
     const char* p = reinterpret_cast<const char*>(&nodes[n.child[k]]);
-    _mm_prefetch(p, _MM_HINT_T0);
-    _mm_prefetch(p + 64, _MM_HINT_T0);
+    for (std::size_t line = 0; line < sizeof(wide_node<N>); line += 64) _mm_prefetch(p + line, _MM_HINT_T0);
   }
 #endif
 }
@@ -282,19 +343,19 @@ inline void prefetch_node([[maybe_unused]] const std::vector<bvh_node4>& nodes, 
 // The nearest-hit walk shared by every wide BVH. leaf(first, count, t_cull) tests the entries
 // [first, first + count) of the primitive order and, on a hit, returns true and lowers t_cull
 // (a float no smaller than the best hit's t). Take the nearest entry; skip it if a hit is already
-// nearer than its box; test a leaf, or a node's four boxes. A node with one box hit goes on to
+// nearer than its box; test a leaf, or a node's N boxes (with the instructions of `simd`). A node with one box hit goes on to
 // that child directly (the most common case, and no trip through the stack's memory); with two,
 // the farther is pushed and the nearer walked at once; with more, they are pushed farthest first
 // (nearest on top). A ray that is not `exact` visits every box: slower, never wrong.
-template <class Leaf>
-bool wide_nearest(const std::vector<bvh_node4>& nodes, const box4_ray& r, float t_min, float t_cull,
-                  Leaf&& leaf, bvh_stats* stats = nullptr) {
+template <int N, class Leaf, class Simd = simd_default>
+bool wide_nearest(const std::vector<wide_node<N>>& nodes, const box4_ray& r, float t_min, float t_cull,
+                  Leaf&& leaf, bvh_stats* stats = nullptr, Simd simd = {}) {
   struct entry {
     std::uint32_t child, count;
     float t_enter;
   };
   if (nodes.empty() || !r.valid) return false;
-  std::array<entry, wide_stack_size> stack;
+  std::array<entry, wide_stack_size<N>> stack;
   int top = 0;
   entry e = {0, 0, t_min};
   bool found = false;
@@ -304,10 +365,10 @@ bool wide_nearest(const std::vector<bvh_node4>& nodes, const box4_ray& r, float 
         if (leaf(e.child, e.count, t_cull)) found = true;
         if (stats) stats->primitives += e.count;
       } else {
-        const bvh_node4& n = nodes[e.child];
-        float t[4];
-        unsigned mask = detail::boxes_to_visit(n, r, t_min, t_cull * wide_cull_margin, t);
-        if (stats) stats->nodes += 4;
+        const wide_node<N>& n = nodes[e.child];
+        float t[N];
+        unsigned mask = detail::boxes_to_visit(n, r, t_min, t_cull * wide_cull_margin, t, simd);
+        if (stats) stats->nodes += N;
         if (mask != 0 && (mask & (mask - 1)) == 0) {  // one child hit: on to it
           const int k = std::countr_zero(mask);
           e = {n.child[k], n.count[k], t[k]};
@@ -342,14 +403,14 @@ bool wide_nearest(const std::vector<bvh_node4>& nodes, const box4_ray& r, float 
 // [end]
 
 // Any hit: leaf(first, count) returns true when an entry blocks the ray; the walk stops there.
-template <class Leaf>
-bool wide_any(const std::vector<bvh_node4>& nodes, const box4_ray& r, float t_min, float t_max, Leaf&& leaf,
-              bvh_stats* stats = nullptr) {
+template <int N, class Leaf, class Simd = simd_default>
+bool wide_any(const std::vector<wide_node<N>>& nodes, const box4_ray& r, float t_min, float t_max, Leaf&& leaf,
+              bvh_stats* stats = nullptr, Simd simd = {}) {
   struct entry {
     std::uint32_t child, count;
   };
   if (nodes.empty() || !r.valid) return false;
-  std::array<entry, wide_stack_size> stack;
+  std::array<entry, wide_stack_size<N>> stack;
   int top = 0;
   stack[top++] = {0, 0};
   while (top > 0) {
@@ -359,10 +420,10 @@ bool wide_any(const std::vector<bvh_node4>& nodes, const box4_ray& r, float t_mi
       if (leaf(e.child, e.count)) return true;
       continue;
     }
-    const bvh_node4& n = nodes[e.child];
-    float t[4];
-    unsigned mask = detail::boxes_to_visit(n, r, t_min, t_max, t);
-    if (stats) stats->nodes += 4;
+    const wide_node<N>& n = nodes[e.child];
+    float t[N];
+    unsigned mask = detail::boxes_to_visit(n, r, t_min, t_max, t, simd);
+    if (stats) stats->nodes += N;
     for (; mask; mask &= mask - 1) {
       const int k = std::countr_zero(mask);
       stack[std::size_t(top++)] = {n.child[k], n.count[k]};
@@ -379,7 +440,7 @@ struct wide_bvh {
   bool empty() const { return nodes.empty(); }
 };
 
-template <class T> wide_bvh make_wide_bvh(const bvh_t<T>& b) { return {collapse4(b), b.order}; }
+template <class T> wide_bvh make_wide_bvh(const bvh_t<T>& b) { return {collapse<4>(b), b.order}; }
 
 // The nearest hit, with the contract of bvh_intersect (bvh.hpp): test(i, t_max) intersects
 // primitive i on (t_min, t_max) and, on a hit, shrinks t_max and returns true.
