@@ -194,11 +194,8 @@ template <int N> class wide_triangle_bvh {
   };
   // Each lane found, in lane order, accepted or not by test()'s own rules (the interval with the
   // tie, the certainty of t > 0, which look at the hit found so far), or tested by test() itself.
-  // A call, not inlined: most blocks have no lane to accept, and the walk's loop keeps its
-  // registers (5 % faster).
-#if defined(__GNUC__)
-  [[gnu::noinline]]
-#endif
+  // (Inlined into the walk with the rest: with the eight-wide nodes that is faster than a call,
+  // 0.72 -> 0.80 of Embree's speed on incoherent rays at 65k triangles, book 5.2.)
   static bool accept_lanes(const triangle4& q, const lanes4& l, const bvh_ray& r, float t_min, float t_max,
                            triangle_bvh_hit& h) {
     bool found = false;
