@@ -11,8 +11,9 @@
 // * integers are 32 bits (cl_int/cl_uint), padded to a multiple of 16 bytes;
 // * geometry is float: what GPUs do fast. The CPU tracer is double, so the two images agree in
 //   distribution, not bit for bit (tests/test_realtime.cpp states the bound).
-// Triangles (meshes and lone triangles) go into one triangle BVH (triangle_bvh.hpp), whose
-// 4-wide nodes are copied as they are: they were laid out as flat arrays for SIMD already.
+// Triangles (meshes and lone triangles) go into one triangle BVH (triangle_bvh.hpp) with four
+// children a node (triangle_bvh4: the kernel tests a node's boxes as float4), whose nodes are
+// copied as they are: they were laid out as flat arrays for SIMD already.
 // Spheres and planes are tested one by one, quads four at a time (gpu_quad4): the course's
 // scenes have a few dozen.
 // The lights are lights.hpp's light_set_t, packed as it is: one record per light (its kind,
