@@ -257,6 +257,9 @@ template <int N> class wide_triangle_bvh {
                                         bvh_stats* stats, Simd simd) const {
     return stats ? nearest(r, t_min, t_max, h, stats, simd) : nearest(r, t_min, t_max, h, nullptr, simd);
   }
+  template <class Simd> bool any_at(const bvh_ray& r, float t_min, float t_max, bvh_stats* stats, Simd simd) const {
+    return stats ? any(r, t_min, t_max, stats, simd) : any(r, t_min, t_max, nullptr, simd);
+  }
   [[gnu::flatten]] bool nearest_scalar(const bvh_ray& r, float t_min, float t_max, triangle_bvh_hit& h,
                                        bvh_stats* stats) const {
     return nearest_at(r, t_min, t_max, h, stats, simd_scalar{});
@@ -270,14 +273,14 @@ template <int N> class wide_triangle_bvh {
     return nearest_at(r, t_min, t_max, h, stats, simd_avx2{});
   }
   [[gnu::flatten]] bool any_scalar(const bvh_ray& r, float t_min, float t_max, bvh_stats* stats) const {
-    return stats ? any(r, t_min, t_max, stats, simd_scalar{}) : any(r, t_min, t_max, nullptr, simd_scalar{});
+    return any_at(r, t_min, t_max, stats, simd_scalar{});
   }
   [[gnu::flatten]] bool any_sse(const bvh_ray& r, float t_min, float t_max, bvh_stats* stats) const {
-    return stats ? any(r, t_min, t_max, stats, simd_sse{}) : any(r, t_min, t_max, nullptr, simd_sse{});
+    return any_at(r, t_min, t_max, stats, simd_sse{});
   }
   ZRAKA_TARGET_AVX2 [[gnu::flatten]] bool any_avx2(const bvh_ray& r, float t_min, float t_max,
                                                    bvh_stats* stats) const {
-    return stats ? any(r, t_min, t_max, stats, simd_avx2{}) : any(r, t_min, t_max, nullptr, simd_avx2{});
+    return any_at(r, t_min, t_max, stats, simd_avx2{});
   }
   // [end]
 
