@@ -145,8 +145,8 @@ int main(int argc, char** argv) {
     for (const int d : divs_list)
       if (d < 1 || d > 512) throw error("--divs must be in 1..512, got " + std::to_string(d));
     const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
-    std::printf("ours: 8-wide nodes, %s; Embree: its own choice for this processor, %s triangle test\n",
-                to_string(simd), robust ? "robust (RTC_SCENE_FLAG_ROBUST)" : "default");
+    std::printf("ours: %d-wide nodes, %s; Embree: its own choice for this processor, %s triangle test\n",
+                triangle_bvh::width, to_string(simd), robust ? "robust (RTC_SCENE_FLAG_ROBUST)" : "default");
     std::printf("%6s %9s %-8s %8s %12s %12s %7s %9s\n", "divs", "triangles", "rays", "B/tri",
                 "ours Mray/s", "Embree Mray/s", "ratio", "agreement");
     stopwatch total;

@@ -153,6 +153,15 @@ TEST_CASE("layout: 256-byte 8-wide and 128-byte 4-wide nodes, 160-byte blocks of
   }
 }
 
+TEST_CASE("SIMD levels: a level asked for is lowered to what this processor runs, never raised") {
+  const simd_level best = cpu_simd();
+  CHECK(usable_simd(simd_level::scalar) == simd_level::scalar);
+  CHECK(usable_simd(simd_level::avx2) == best);
+  CHECK(usable_simd(simd_level::sse) == (best == simd_level::scalar ? simd_level::scalar : simd_level::sse));
+  CHECK(simd_levels().front() == simd_level::scalar);
+  CHECK(simd_levels().back() == best);
+}
+
 TEST_CASE("the teapot at several divs: identical to brute force") {
   const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
   rng g(21);

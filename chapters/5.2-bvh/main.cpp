@@ -168,13 +168,13 @@ int main(int argc, char** argv) {
 
     const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
     std::printf("teapot: %zu patches; BVH: SAH with %d bins, leaves of at most %d in blocks of %d, C_trav %g; "
-                "8-wide nodes, %s box tests\n",
+                "%d-wide nodes, %s box tests\n",
                 patches.size(), s.build.bins, s.build.max_leaf_size, s.build.leaf_block, s.build.traversal_cost,
-                to_string(cpu_simd()));
+                triangle_bvh::width, to_string(cpu_simd()));
     std::printf("rays: camera %dx%d = %d, random %d (origins in the teapot's box grown 20%%)\n\n",
                 s.width, s.height, s.width * s.height, s.random_rays);
     std::printf("%5s %9s %8s %8s %6s %5s | %-6s %9s %8s %8s | %9s %6s %9s %7s\n", "divs",
-                "triangles", "build s", "8-nodes", "B/tri", "depth", "rays", "BVH Mr/s", "boxes/r",
+                "triangles", "build s", "nodes", "B/tri", "depth", "rays", "BVH Mr/s", "boxes/r",
                 "tris/r", "brute r/s", "of", "speed-up", "agree");
 
     struct row {

@@ -73,6 +73,7 @@ struct bvh_ray {
 template <int N> class wide_triangle_bvh {
  public:
   using node = wide_node<N>;
+  static constexpr int width = N;  // children a node
   // Defaults measured on the teapot (book 5.2): the SAH prices a leaf by its blocks of four (a
   // leaf of 5 costs as much as one of 8), so leaves fill their blocks; leaves of up to 16 and a
   // box test priced at 3 block tests give the fastest walk and the least memory.

@@ -40,7 +40,6 @@ namespace zraka {
 // A child is a leaf of count[k] entries from position child[k] of the primitive order, or an
 // inner node nodes[child[k]] (count 0). Unused slots have an empty box, which no ray hits.
 template <int N> struct alignas(64) wide_node {
-  static constexpr int width = N;
   float box[6][N];
   std::uint32_t child[N];
   std::uint32_t count[N];
@@ -343,10 +342,11 @@ void prefetch_node([[maybe_unused]] const std::vector<wide_node<N>>& nodes, [[ma
 // The nearest-hit walk shared by every wide BVH. leaf(first, count, t_cull) tests the entries
 // [first, first + count) of the primitive order and, on a hit, returns true and lowers t_cull
 // (a float no smaller than the best hit's t). Take the nearest entry; skip it if a hit is already
-// nearer than its box; test a leaf, or a node's N boxes (with the instructions of `simd`). A node with one box hit goes on to
-// that child directly (the most common case, and no trip through the stack's memory); with two,
-// the farther is pushed and the nearer walked at once; with more, they are pushed farthest first
-// (nearest on top). A ray that is not `exact` visits every box: slower, never wrong.
+// nearer than its box; test a leaf, or a node's N boxes (with the instructions of `simd`). A
+// node with one box hit goes on to that child directly (the most common case, and no trip
+// through the stack's memory); with two, the farther is pushed and the nearer walked at once;
+// with more, they are pushed farthest first (nearest on top). A ray that is not `exact` visits
+// every box: slower, never wrong.
 template <int N, class Leaf, class Simd = simd_default>
 bool wide_nearest(const std::vector<wide_node<N>>& nodes, const box4_ray& r, float t_min, float t_cull,
                   Leaf&& leaf, bvh_stats* stats = nullptr, Simd simd = {}) {
