@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -137,9 +138,11 @@ int main(int argc, char** argv) {
 
   return guarded([&] {
     if (repeat < 1) throw error("--repeat must be at least 1");
-    if (simd_name != "avx2" && simd_name != "sse" && simd_name != "scalar")
-      throw error("--simd must be avx2, sse or scalar, got '" + simd_name + "'");
-    const simd_level simd = simd_name == "avx2" ? simd_level::avx2 : simd_name == "sse" ? simd_level::sse : simd_level::scalar;
+    std::optional<simd_level> named;  // the level whose name (to_string) is --simd's
+    for (const simd_level l : {simd_level::avx2, simd_level::sse, simd_level::scalar})
+      if (simd_name == to_string(l)) named = l;
+    if (!named) throw error("--simd must be avx2, sse or scalar, got '" + simd_name + "'");
+    const simd_level simd = *named;
     if (usable_simd(simd) != simd) throw error("--simd " + simd_name + ": this processor (or build) does not run it");
     if (random_count < 1) throw error("--rays must be at least 1");
     for (const int d : divs_list)

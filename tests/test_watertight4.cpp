@@ -16,7 +16,7 @@
 
 using namespace zraka;
 
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+#if ZRAKA_HAS_SSE
 
 namespace {
 

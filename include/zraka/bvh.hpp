@@ -16,6 +16,7 @@
 #include <zraka/aabb.hpp>
 #include <zraka/compiled.hpp>
 #include <zraka/error.hpp>
+#include <zraka/simd.hpp>
 
 #include <algorithm>
 #include <array>
@@ -25,7 +26,7 @@
 #include <type_traits>
 #include <vector>
 
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+#if ZRAKA_HAS_SSE
 #include <immintrin.h>
 #endif
 
@@ -126,7 +127,7 @@ template <class T> class bvh_builder {
   // binning a bin grows by one min and one max instead of six, and the chain of updates of one
   // bin through memory is shorter. The bins' boxes are the same numbers (up to the sign of a
   // zero, which no area sees), so the tree is the same.
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+#if ZRAKA_HAS_SSE
   static constexpr bool four_wide_bins = std::is_same_v<T, float>;
   struct box_lanes {
     __m128 lo = _mm_set1_ps(infinity<float>), hi = _mm_set1_ps(-infinity<float>);

@@ -7,7 +7,9 @@
 //   are called after cpu_simd() said the processor has it, never for the whole program.
 // The levels are tags (simd_scalar, simd_sse, simd_avx2) that select a function at compile time;
 // cpu_simd() picks one at run time, once per query, not once per box.
-// ZRAKA_NO_SIMD (a build flag) leaves only the scalar level.
+// ZRAKA_NO_SIMD (a build flag) leaves only the scalar level. ZRAKA_HAS_SSE is the one test of
+// whether this build has SSE, for every four-lane piece (bvh.hpp's binning, watertight4.hpp,
+// wide_bvh.hpp).
 #include <string>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(ZRAKA_NO_SIMD)

@@ -11,11 +11,12 @@
 //   then the scalar test's own roundings depend on the compiler's choices, and no four-lane copy
 //   can promise its bits. There, and without SSE, watertight4_available is false and the BVH's
 //   leaf runs the scalar test lane by lane.
+#include <zraka/simd.hpp>
 #include <zraka/triangle.hpp>
 
 #include <cstdint>
 
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+#if ZRAKA_HAS_SSE
 #include <immintrin.h>
 #endif
 
@@ -34,13 +35,13 @@ static_assert(sizeof(triangle4) == 160);
 
 namespace detail {
 
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+#if ZRAKA_HAS_SSE
 inline constexpr bool watertight4_available = !may_fuse;
 #else
 inline constexpr bool watertight4_available = false;
 #endif
 
-#if defined(__SSE2__) && !defined(ZRAKA_NO_SIMD)
+#if ZRAKA_HAS_SSE
 // watertight_ray's numbers, each in four lanes.
 struct watertight_ray4 {
   __m128 ox, oy, oz, sx, sy, sz;

@@ -226,6 +226,16 @@ unsigned hit_boxes(const wide_node<N>& n, const box4_ray& r, float t_min, float 
 }
 
 namespace detail {
+// A wide node with every slot unused: empty boxes (lo > hi), which no ray hits.
+template <int N> wide_node<N> empty_wide_node() {
+  wide_node<N> n;
+  for (int k = 0; k < N; ++k) {
+    for (int a = 0; a < 3; ++a) n.box[a][k] = infinity<float>, n.box[3 + a][k] = -infinity<float>;
+    n.child[k] = n.count[k] = 0;
+  }
+  return n;
+}
+
 // The N children of one wide node are binary nodes; they start as one node's two children.
 template <int N, class T>
 std::uint32_t collapse_node(const bvh_t<T>& b, std::uint32_t first, std::uint32_t second,
@@ -248,13 +258,7 @@ std::uint32_t collapse_node(const bvh_t<T>& b, std::uint32_t first, std::uint32_
     kids[std::size_t(count++)] = b.nodes[k].index;  // the second
   }
   const auto me = static_cast<std::uint32_t>(out.size());
-  out.emplace_back();
-  for (int a = 0; a < 3; ++a)
-    for (int k = 0; k < N; ++k) {
-      out[me].box[a][k] = infinity<float>;  // an empty box: unused slot
-      out[me].box[3 + a][k] = -infinity<float>;
-      out[me].child[k] = out[me].count[k] = 0;
-    }
+  out.push_back(empty_wide_node<N>());
   for (int k = 0; k < count; ++k) {
     const bvh_node_t<T>& n = b.nodes[kids[std::size_t(k)]];
     for (int a = 0; a < 3; ++a) {
@@ -282,10 +286,7 @@ template <int N, class T> std::vector<wide_node<N>> collapse(const bvh_t<T>& b) 
   if (b.empty()) return out;
   out.reserve(b.nodes.size() / (N - 1) + 1);
   if (b.nodes[0].leaf()) {  // a root leaf: one wide node with one child
-    auto& n = out.emplace_back();
-    for (int a = 0; a < 3; ++a)
-      for (int k = 0; k < N; ++k) n.box[a][k] = infinity<float>, n.box[3 + a][k] = -infinity<float>;
-    for (int k = 0; k < N; ++k) n.child[k] = n.count[k] = 0;
+    auto& n = out.emplace_back(detail::empty_wide_node<N>());
     for (int a = 0; a < 3; ++a) {
       n.box[a][0] = float_down(b.nodes[0].box.lo[a]);
       n.box[3 + a][0] = float_up(b.nodes[0].box.hi[a]);
