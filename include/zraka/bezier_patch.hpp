@@ -23,7 +23,7 @@ template <class T> struct bezier_patch_t {
   // The largest |coordinate| of a control point: evaluation errors are relative to it.
   T scale() const {
     T m = T(0);
-    for (const auto& p : P) m = std::max(m, max_component(glm::abs(p)));
+    for (const auto& p : P) m = std::max(m, max_component(abs3(p)));
     return m;
   }
 };
@@ -82,7 +82,7 @@ namespace detail {
 // (anti)parallel; otherwise zero. `tiny` is the noise floor in absolute units.
 template <class T> vec3_t<T> reliable_normal(const vec3_t<T>& du, const vec3_t<T>& dv, T tiny) {
   const T sqrt_eps = std::sqrt(std::numeric_limits<T>::epsilon());
-  if (!(max_component(glm::abs(du)) > tiny && max_component(glm::abs(dv)) > tiny)) return {};
+  if (!(max_component(abs3(du)) > tiny && max_component(abs3(dv)) > tiny)) return {};
   const vec3_t<T> n = glm::cross(normalize_or_zero(du), normalize_or_zero(dv));  // |n| = sin
   return glm::length(n) > sqrt_eps ? normalize_or_zero(n) : vec3_t<T>(0);
 }
@@ -102,9 +102,9 @@ template <class T> vec3_t<T> patch_normal(const bezier_patch_t<T>& patch, T u, T
 
   const T inward_v = v < T(0.5) ? T(1) : T(-1), inward_u = u < T(0.5) ? T(1) : T(-1);
   vec3_t<T> n(0);
-  if (max_component(glm::abs(d.dv)) > tiny)  // du vanished: a collapsed row
+  if (max_component(abs3(d.dv)) > tiny)  // du vanished: a collapsed row
     n = inward_v * normalize_or_zero(glm::cross(normalize_or_zero(d.duv), normalize_or_zero(d.dv)));
-  else if (max_component(glm::abs(d.du)) > tiny)  // dv vanished: a collapsed column
+  else if (max_component(abs3(d.du)) > tiny)  // dv vanished: a collapsed column
     n = inward_u * normalize_or_zero(glm::cross(normalize_or_zero(d.du), normalize_or_zero(d.duv)));
   if (n != vec3_t<T>(0)) return n;
 

@@ -192,7 +192,7 @@ template <class T> class light_set_t {
     const vec3_t<T> n = sample_uniform_sphere(u);
     const vec3_t<T> on = sp.radius * n;
     const vec3_t<T> p = sp.center + on;
-    return surface_point_t<T>{p, n, gamma<T>(6) * (glm::abs(on) + glm::abs(p))};
+    return surface_point_t<T>{p, n, gamma<T>(6) * (abs3(on) + abs3(p))};
   }
 
   // A point uniform in area on light l (not a sphere, not a point light).
@@ -201,7 +201,7 @@ template <class T> class light_set_t {
     const vec2_t<T> b = sample_triangle_barycentric(u);
     const T w = T(1) - b.x - b.y;
     const vec3_t<T> p = w * t.a + b.x * t.b + b.y * t.c;
-    return surface_point_t<T>{p, t.normal(), g * (glm::abs(w * t.a) + glm::abs(b.x * t.b) + glm::abs(b.y * t.c))};
+    return surface_point_t<T>{p, t.normal(), g * (abs3(w * t.a) + abs3(b.x * t.b) + abs3(b.y * t.c))};
   }
 
   // The environment as one more light (the top of this file).
@@ -293,7 +293,7 @@ std::optional<light_sample_t<T>> light_set_t<T>::sample_one(int i, const hit_t<T
     s.shadow = spawn_segment(h, s.point);
     // Stop short of the light's own surface by its rounding too, measured along the ray:
     // meshes are tested in float, so a float hit on the light itself may come a little early.
-    s.shadow.t_max -= glm::dot(glm::abs(sp->normal), sp->p_error) / std::max(cos_l, T(1e-30));
+    s.shadow.t_max -= glm::dot(abs3(sp->normal), sp->p_error) / std::max(cos_l, T(1e-30));
   }
   s.Le = emitted(m, lh);
   if (!(s.pdf > T(0)) || !std::isfinite(s.pdf) || s.wi == vec3_t<T>(0)) return std::nullopt;
@@ -431,7 +431,7 @@ std::optional<surface_point_t<T>> light_set_t<T>::sample_surface(const light& l,
       const T a = clamp_unit(u.x), b = clamp_unit(u.y);
       const vec3_t<T> n = i < sc_.accel.quad_planes.size() ? sc_.accel.quad_planes[i].N : q.normal();  // the same bits
       return surface_point_t<T>{q.point(a, b), n,
-                                gamma<T>(4) * (glm::abs(q.corner) + glm::abs(a * q.u) + glm::abs(b * q.v))};
+                                gamma<T>(4) * (abs3(q.corner) + abs3(a * q.u) + abs3(b * q.v))};
     }
     case shape_kind::triangle: return on_triangle(sc_.triangles[i].shape, u, gamma<T>(7));
     case shape_kind::mesh: {

@@ -424,7 +424,7 @@ ZRAKA_MESH_FILE_FN mesh_file_contents load_mesh_file(const std::filesystem::path
     for (unsigned v = 0; v < m.mNumVertices; ++v) {
       const aiVector3D& p = m.mVertices[v];
       const vec3 q = linear * vec3(p.x, p.y, p.z) + offset;
-      if (!is_finite(q) || glm::any(glm::greaterThan(glm::abs(q), vec3(max_coordinate))))
+      if (!is_finite(q) || glm::any(glm::greaterThan(abs3(q), vec3(max_coordinate))))
         throw error(name + part + ": vertex " + std::to_string(v) + " is " + detail::vector_text(p.x, p.y, p.z) +
                     (is_finite(vec3(p.x, p.y, p.z)) ? " and its node's transform puts it" : "") +
                     ", not finite within +-1e18");

@@ -57,8 +57,8 @@ bool intersect(const plane_t<T>& pl, const ray_t<T>& r, T t_min, T t_max, hit_t<
   const T num = glm::dot(to_plane, N);  // eq. 1.12: t = (P0 - O).N / D.N
   const T den = glm::dot(D, N);
   // A 3-term dot product is off by at most gamma(3) sum |a_i b_i|; one more for P0 - O.
-  if (!(std::abs(den) > gamma<T>(3) * glm::dot(glm::abs(D), glm::abs(N)))) return false;
-  if (!(std::abs(num) > gamma<T>(5) * glm::dot(glm::abs(to_plane), glm::abs(N)))) return false;
+  if (!(std::abs(den) > gamma<T>(3) * glm::dot(abs3(D), abs3(N)))) return false;
+  if (!(std::abs(num) > gamma<T>(5) * glm::dot(abs3(to_plane), abs3(N)))) return false;
   const T t = num / den;
   if (!(t > t_min && t < t_max)) return false;
   // [end]
@@ -70,7 +70,7 @@ bool intersect(const plane_t<T>& pl, const ray_t<T>& r, T t_min, T t_max, hit_t<
   // |(p - P0).N| <= gamma(13) S with S = (|x| + |P0|).|N|: gamma(4) for the distance, as much
   // again because |N| = 1 only to rounding, and 2 gamma(2) for the subtraction; S itself and
   // the second-order terms are covered by rounding up to gamma(16).
-  const T e = gamma<T>(16) * glm::dot(glm::abs(x) + glm::abs(pl.point), glm::abs(N));
+  const T e = gamma<T>(16) * glm::dot(abs3(x) + abs3(pl.point), abs3(N));
   // [end]
   rec.t = t;
   rec.p = p;

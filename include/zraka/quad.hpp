@@ -84,10 +84,10 @@ ZRAKA_FORCE_INLINE std::optional<quad_root_t<T>> quad_root(const parallelogram_t
   // decides, and the order changes no answer.)
   if (!(t > t_min && t < t_max)) return std::nullopt;
   // Parallel (or NaN): the sign of N.D is lost in its rounding error.
-  if (!(std::abs(denom) > gamma<T>(3) * glm::dot(glm::abs(N), glm::abs(D)))) return std::nullopt;
+  if (!(std::abs(denom) > gamma<T>(3) * glm::dot(abs3(N), abs3(D)))) return std::nullopt;
   // The error of s: the subtraction and the dot product round (gamma(4) of the magnitudes), and
   // N is itself a few ulps off perpendicular to u and v (gamma(4) of the distance from Q).
-  const T s_error = gamma<T>(4) * glm::dot(glm::abs(N), glm::abs(q.corner) + glm::abs(r.origin)) +
+  const T s_error = gamma<T>(4) * glm::dot(abs3(N), abs3(q.corner) + abs3(r.origin)) +
                     gamma<T>(4) * glm::length(QO);
   if (!(std::abs(s) > s_error)) return std::nullopt;  // origin on the plane: it cannot see this quad
 
@@ -111,7 +111,7 @@ bool intersect(const parallelogram_t<T>& q, const quad_plane_t<T>& pl, const ray
   rec.t = root->t;
   rec.p = q.point(a, b);
   // Q + a u + b v: one rounding per product and per sum, three terms (gamma(3), and one spare).
-  rec.p_error = gamma<T>(4) * (glm::abs(q.corner) + glm::abs(a * q.u) + glm::abs(b * q.v));
+  rec.p_error = gamma<T>(4) * (abs3(q.corner) + abs3(a * q.u) + abs3(b * q.v));
   rec.normal = pl.N;
   rec.uv = {a, b};
   rec.set_face(r.direction);

@@ -280,7 +280,7 @@ bool intersect_one(const mesh_object_t<T>& mo, const ray_t<T>& r, T t_min, T t_m
   const triangle_t<T> tri = mo.shape.triangle(th.triangle);
   const T u(th.u), v(th.v), w = T(1) - u - v;
   fill_triangle_hit(tri, r, t, u, v, h);
-  const vec3_t<T> magnitude = glm::abs(w * tri.a) + glm::abs(u * tri.b) + glm::abs(v * tri.c);
+  const vec3_t<T> magnitude = abs3(w * tri.a) + abs3(u * tri.b) + abs3(v * tri.c);
   h.p_error = glm::max(h.p_error, T(gamma<float>(64)) * magnitude);
   triangle = th.triangle;
   return true;
@@ -319,7 +319,7 @@ template <class T> aabb_t<T> shape_bounds(const user_shape_ptr<T>& s) { return s
 // The box padded by the intersection routines' own rounding, generously.
 template <class T> aabb_t<T> padded(const aabb_t<T>& b, T pad_gamma) {
   if (b.empty()) return b;
-  const vec3_t<T> pad = pad_gamma * (glm::abs(b.lo) + glm::abs(b.hi));
+  const vec3_t<T> pad = pad_gamma * (abs3(b.lo) + abs3(b.hi));
   return {b.lo - pad, b.hi + pad};
 }
 template <class S, class T> aabb_t<T> bounds_one(const object_t<S>& o, T) {

@@ -19,7 +19,7 @@ template <class T> constexpr T gamma(int n) {
 template <class T>
 vec3_t<T> offset_origin(const vec3_t<T>& p, const vec3_t<T>& p_error, const vec3_t<T>& n,
                         const vec3_t<T>& w) {
-  const T d = glm::dot(glm::abs(n), p_error);
+  const T d = glm::dot(abs3(n), p_error);
   vec3_t<T> offset = d * n;
   if (glm::dot(w, n) < T(0)) offset = -offset;  // leave on the side w points to
   vec3_t<T> po = p + offset;

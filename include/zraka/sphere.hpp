@@ -84,7 +84,7 @@ bool intersect(const sphere_t<T>& s, const ray_t<T>& r, T t_min, T t_max, hit_t<
   if (!(len > T(0)) || !std::isfinite(len)) local = root->entering ? -D : D;
   const vec3_t<T> on = local * (s.radius / glm::length(local));
   rec.p = s.center + on;
-  rec.p_error = gamma<T>(6) * (glm::abs(on) + glm::abs(rec.p));
+  rec.p_error = gamma<T>(6) * (abs3(on) + abs3(rec.p));
   rec.normal = on / s.radius;
   rec.set_face(D);
   // uv: longitude phi/(2 pi) in [0,1], latitude theta/pi from -y (0) to +y (1).

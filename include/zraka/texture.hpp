@@ -127,7 +127,7 @@ rgb evaluate(const texture& tex, const vec3_t<T>& p, const vec3_t<T>& n, const v
     const double odd = std::abs(std::fmod(std::floor(u / tex.cell), 2.0)) + std::abs(std::fmod(std::floor(v / tex.cell), 2.0));
     return odd == 1 ? tex.b : tex.a;
   }
-  const vec3_t<T> an = glm::abs(n);
+  const vec3_t<T> an = abs3(n);
   const int drop = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
   long long sum = 0;
   for (int i = 0; i < 3; ++i)

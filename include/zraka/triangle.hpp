@@ -42,7 +42,7 @@ void fill_triangle_hit(const triangle_t<T>& tri, const ray_t<T>& r, T t, T u, T 
   const T w = T(1) - u - v;
   rec.t = t;
   rec.p = w * tri.a + u * tri.b + v * tri.c;
-  rec.p_error = gamma<T>(7) * (glm::abs(w * tri.a) + glm::abs(u * tri.b) + glm::abs(v * tri.c));
+  rec.p_error = gamma<T>(7) * (abs3(w * tri.a) + abs3(u * tri.b) + abs3(v * tri.c));
   rec.normal = tri.normal();
   rec.uv = {u, v};
   rec.set_face(r.direction);
@@ -242,8 +242,8 @@ bool t_certainly_positive(const vec3_t<T>& A, const vec3_t<T>& B, const vec3_t<T
                    std::abs(e1.z * e2.x) + std::abs(e1.x * e2.z),
                    std::abs(e1.x * e2.y) + std::abs(e1.y * e2.x));
   const double s = glm::dot(n, w), n_dot_d = glm::dot(n, d);
-  return std::abs(s) > gamma<double>(9) * glm::dot(n_abs, glm::abs(w)) &&
-         std::abs(n_dot_d) > gamma<double>(8) * glm::dot(n_abs, glm::abs(d)) &&
+  return std::abs(s) > gamma<double>(9) * glm::dot(n_abs, abs3(w)) &&
+         std::abs(n_dot_d) > gamma<double>(8) * glm::dot(n_abs, abs3(d)) &&
          (s > 0) == (n_dot_d > 0);
 }
 // [end]
