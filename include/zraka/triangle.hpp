@@ -171,7 +171,8 @@ template <class T> struct watertight_ray {
               y_over_z = std::abs(d[1]) > std::abs(d[2]);
     const int z_if_x = 2 - 2 * x_over_z, z_if_y = 2 - y_over_z;  // kz when |x| > |y|, and when not
     kz = z_if_y + x_over_y * (z_if_x - z_if_y);
-    const int next = kz + 1 - 3 * (kz == 2), after = next + 1 - 3 * (next == 2);
+    constexpr int next_axis[5] = {1, 2, 0, 1, 2};  // (kz + 1) % 3 and (kz + 2) % 3 without a branch
+    const int next = next_axis[kz], after = next_axis[kz + 1];
     const int flip = d[kz] < T(0);  // keep the winding: swap x and y
     kx = next + flip * (after - next);
     ky = after + flip * (next - after);

@@ -379,8 +379,8 @@ bool wide_nearest(const std::vector<wide_node<N>>& nodes, const box4_ray& r, flo
         // is cleared. std::popcount is a library call on plain x86-64.)
         if (const unsigned rest = mask & (mask - 1); rest != 0 && (rest & (rest - 1)) == 0) {
           const int k0 = std::countr_zero(mask), k1 = std::countr_zero(rest);
-          const bool swap = t[k1] < t[k0];
-          const int k_near = swap ? k1 : k0, k_far = swap ? k0 : k1;
+          const int swap = (k0 ^ k1) & -int(t[k1] < t[k0]);  // k0 ^ k1 or 0: a coin toss, so no branch
+          const int k_near = k0 ^ swap, k_far = k1 ^ swap;
           stack[std::size_t(top++)] = {n.child[k_far], n.count[k_far], t[k_far]};
           detail::prefetch_node(nodes, n, k_far);
           e = {n.child[k_near], n.count[k_near], t[k_near]};
