@@ -148,6 +148,18 @@ template <class T> class bvh_builder {
     _mm_store_ps(hi, b.hi);
     return {vec3_t<T>(lo[0], lo[1], lo[2]), vec3_t<T>(hi[0], hi[1], hi[2])};
   }
+  // bin_of on the three axes at once; clamping before the conversion to int gives the same
+  // numbers, so the binning and the partition still agree.
+  struct centroid_bins {
+    __m128 lo, scale, top;
+    centroid_bins(const aabb_t<T>& cbox, const vec3_t<T>& s, int bins)
+        : lo(_mm_setr_ps(float(cbox.lo.x), float(cbox.lo.y), float(cbox.lo.z), 0.0f)),
+          scale(_mm_setr_ps(float(s.x), float(s.y), float(s.z), 0.0f)), top(_mm_set1_ps(float(bins - 1))) {}
+    void operator()(const vec3_t<T>& c, int (&j)[4]) const {
+      const __m128 x = _mm_mul_ps(_mm_sub_ps(_mm_setr_ps(float(c.x), float(c.y), float(c.z), 0.0f), lo), scale);
+      _mm_store_si128(reinterpret_cast<__m128i*>(j), _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(x, _mm_setzero_ps()), top)));
+    }
+  };
 #else
   static constexpr bool four_wide_bins = false;
   struct box_lanes {  // without SSE: never used (four_wide_bins is false), kept so the code compiles
@@ -159,27 +171,37 @@ template <class T> class bvh_builder {
   };
   static box_lanes lanes_of(const aabb_t<T>& box) { return {box}; }
   static aabb_t<T> box_of(const box_lanes& b) { return b.box; }
+  struct centroid_bins {
+    centroid_bins(const aabb_t<T>&, const vec3_t<T>&, int) {}
+    void operator()(const vec3_t<T>&, int (&)[4]) const {}
+  };
 #endif
 
   // [listing sah]
   // One pass bins every primitive of [first, last) on all three axes: each box is read once,
-  // not three times (a third faster build of a million triangles), and each axis notes the
-  // lowest and highest bin it filled. Vector: the float pass in four lanes (box_lanes, above).
+  // not three times (a third faster build of a million triangles); then each axis notes the
+  // lowest and highest bin it filled. Vector: the float pass in four lanes (box_lanes and
+  // centroid_bins, above).
   template <bool Vector>
   void bin_primitives(std::uint32_t first, std::uint32_t last, const aabb_t<T>& cbox, const vec3_t<T>& scale,
                       int (&lo_bin)[3], int (&hi_bin)[3]) {
     const int nb = opt_.bins;
     if constexpr (Vector) std::fill(bins4_.begin(), bins4_.end(), box_lanes{});
+    const centroid_bins bins_of(cbox, scale, nb);
     for (std::uint32_t k = first; k < last; ++k) {
       const std::uint32_t i = out_.order[k];
       const aabb_t<T>& box = boxes_[i];  // never empty: run() left those out
       [[maybe_unused]] box_lanes lanes;
-      if constexpr (Vector) lanes = lanes_of(box);
+      [[maybe_unused]] alignas(16) int j4[4];
+      if constexpr (Vector) {
+        lanes = lanes_of(box);
+        bins_of(centroids_[i], j4);
+      }
       for (int a = 0; a < 3; ++a) {
         if (scale[a] == T(0)) continue;
-        const int j = bin_of(centroids_[i][a], cbox.lo[a], scale[a], nb);
-        lo_bin[a] = std::min(lo_bin[a], j);
-        hi_bin[a] = std::max(hi_bin[a], j);
+        int j;
+        if constexpr (Vector) j = j4[a];
+        else j = bin_of(centroids_[i][a], cbox.lo[a], scale[a], nb);
         bin& b = bins_[std::size_t(a * nb + j)];
         if constexpr (Vector) {
           bins4_[std::size_t(a * nb + j)].grow(lanes);
@@ -193,6 +215,12 @@ template <class T> class bvh_builder {
     if constexpr (Vector)
       for (std::size_t b = 0; b < bins_.size(); ++b)
         if (bins_[b].count != 0) bins_[b].box = box_of(bins4_[b]);  // an empty bin keeps its empty box
+    for (int a = 0; a < 3; ++a)  // the bins filled: after the pass, not per primitive
+      for (int j = 0; j < nb; ++j)
+        if (bins_[std::size_t(a * nb + j)].count != 0) {
+          lo_bin[a] = std::min(lo_bin[a], j);
+          hi_bin[a] = j;
+        }
   }
 
   // The SAH cost of splitting [first, last) at a bin border, in units of one primitive test:
