@@ -1528,12 +1528,14 @@ uchar srgb_byte(float c, global const float* steps) {
 // lane its pixel's samples in order. Every line is the loop's line above for eight paths at once;
 // where their paths differ (glass or a wall, a light sample or none), masks choose each lane's
 // result. Built instead of the loop above when the scene has only what these lines cover
-// (gpu_scene.hpp's lanes_cover): spheres, quads, Lambert without a texture, glass, emitters and
-// quad lights.
+// (gpu_scene.hpp's lanes_cover): spheres, quads, Lambert (solid or a world-space checker),
+// glass, emitters, quad lights and sphere lights. What only some lanes need and the one-path
+// loop already has (a checker's albedo, a point on a sphere light and its density) is that
+// loop's own function called lane by lane (lane_hit), not a second copy.
 #if defined(HAS_PLANES) || defined(HAS_TRIANGLES) || defined(HAS_METAL) || defined(HAS_PHONG) || \
-    defined(HAS_CHECKER) || defined(HAS_MICROFACETS) || defined(HAS_TEXTURES) || defined(HAS_ENVIRONMENT) || \
-    defined(HAS_SPHERE_LIGHTS) || defined(HAS_TRIANGLE_LIGHTS) || defined(HAS_POINT_LIGHTS) || defined(WEAK_SEED)
-#error "PATH_LANES covers spheres, quads, Lambert, glass, emitters and quad lights only (gpu_scene.hpp's lanes_cover)"
+    defined(HAS_UV_CHECKER) || defined(HAS_MICROFACETS) || defined(HAS_TEXTURES) || defined(HAS_ENVIRONMENT) || \
+    defined(HAS_TRIANGLE_LIGHTS) || defined(HAS_POINT_LIGHTS) || defined(WEAK_SEED)
+#error "PATH_LANES covers spheres, quads, Lambert, glass, emitters, quad and sphere lights only (gpu_scene.hpp's lanes_cover)"
 #endif
 #if PATH_LANES != 8
 #error "the lanes are float8: build with -DPATH_LANES=8 (gpu_scene.hpp's gpu_path_lanes)"
@@ -1649,6 +1651,25 @@ typedef struct {
   int8 material, light;
 } hit8_t;
 
+// Lane k of a float8 or an int8 (read through memory: OpenCL C has no variable lane index).
+#define LANE(v, k) (((const float*)&(v))[k])
+#define LANE_INT(v, k) (((const int*)&(v))[k])
+#if defined(HAS_CHECKER) || defined(HAS_SPHERE_LIGHTS)
+float3 lane3(const vec8* v, int k) { return (float3)(LANE(v->x, k), LANE(v->y, k), LANE(v->z, k)); }
+void set_lane3(vec8* v, int k, float3 a) {
+  ((float*)&v->x)[k] = a.x, ((float*)&v->y)[k] = a.y, ((float*)&v->z)[k] = a.z;
+}
+// Lane k of eight hit records, as the one-path loop's functions take a hit.
+hit_t lane_hit(const hit8_t* h, int k) {
+  hit_t r;
+  r.t = LANE(h->t, k);
+  r.p = lane3(&h->p, k), r.p_error = lane3(&h->p_error, k), r.normal = lane3(&h->normal, k);
+  r.front_face = LANE_INT(h->front_face, k) != 0;
+  r.material = LANE_INT(h->material, k), r.light = LANE_INT(h->light, k);
+  return r;
+}
+#endif
+
 #pragma OPENCL FP_CONTRACT OFF
 // [listing cl-nearest8]
 // nearest_hit for the rays in the lanes of `live`: every sphere and quad tested in all eight
@@ -1752,10 +1773,10 @@ typedef struct {
   mask8 two_sided;
   float8 ior;
 } material8_t;
-material8_t materials8(global const material_t* materials, int8 index) {
+material8_t materials8(global const material_t* materials, const hit8_t* h) {
   int mi[LANES], kind[LANES], two[LANES];
   float ax[LANES], ay[LANES], az[LANES], rx[LANES], ry[LANES], rz[LANES], ior[LANES];
-  vstore8(index, 0, mi);
+  vstore8(h->material, 0, mi);
   for (int k = 0; k < LANES; ++k) {
     kind[k] = -1, two[k] = 0, ax[k] = ay[k] = az[k] = rx[k] = ry[k] = rz[k] = 0.0f, ior[k] = 1.0f;
     if (mi[k] < 0) continue;  // a lane that hit nothing
@@ -1763,6 +1784,13 @@ material8_t materials8(global const material_t* materials, int8 index) {
     kind[k] = m->kind;
     two[k] = m->two_sided ? -1 : 0;
     ax[k] = m->albedo_a.x, ay[k] = m->albedo_a.y, az[k] = m->albedo_a.z;
+#ifdef HAS_CHECKER
+    if (m->checker) {  // the one-path loop's albedo(), at this lane's hit
+      const hit_t hk = lane_hit(h, k);
+      const float3 a = albedo(m, &hk);
+      ax[k] = a.x, ay[k] = a.y, az[k] = a.z;
+    }
+#endif
     rx[k] = m->radiance.x, ry[k] = m->radiance.y, rz[k] = m->radiance.z;
     ior[k] = m->ior;
   }
@@ -1791,6 +1819,9 @@ light8_t lights8(const scene_t* sc, int8 which) {
     const mask8 m = which == i;
     if (!any(m)) continue;
     global const light_t* l = &sc->lights[i];
+#ifdef HAS_SPHERE_LIGHTS
+    if (l->kind != LIGHT_QUAD) continue;  // its lanes are left to the per-lane code below
+#endif
     const quad_t q = sc->quads[l->object];
     global const material_t* e = &sc->materials[l->material];
     r.corner = pick8(r.corner, splat8(q.corner.xyz), m);
@@ -1824,7 +1855,7 @@ mask8 path_step8(const scene_t* sc, paths8_t* P, mask8 live) {
   const mask8 found = nearest_hit8(sc, P->o, P->D, live, &h);
   P->L = pick8(P->L, add8(P->L, mul8(P->beta, splat8(sc->background))), live & ~found);
   mask8 going = live & found;
-  const material8_t m = materials8(sc->materials, h.material);
+  const material8_t m = materials8(sc->materials, &h);
 #ifdef HAS_EMITTERS
   const vec8 Le = pick8(splat8((float3)(0.0f)), m.radiance, h.front_face | m.two_sided);
   const mask8 glows = going & nonzero8(Le);
@@ -1837,6 +1868,16 @@ mask8 path_step8(const scene_t* sc, paths8_t* P, mask8 live) {
       const float8 pdf = select((float8)(0.0f), l.inv_area * (h.t * h.t) / c, c > 0.0f) * l.pdf;
       w = select(power_heuristic8(P->bsdf_pdf, pdf), w, P->specular | (h.light < 0));
     }
+#endif
+#ifdef HAS_SPHERE_LIGHTS
+    if (nee && mis)  // a sphere light's density: light_pdf itself, lane by lane
+      for (int k = 0; k < LANES; ++k) {
+        const int li = LANE_INT(h.light, k);
+        if (!LANE_INT(glows, k) || LANE_INT(P->specular, k) || li < 0 || sc->lights[li].kind != LIGHT_SPHERE) continue;
+        const hit_t hk = lane_hit(&h, k);
+        ((float*)&w)[k] =
+            power_heuristic(LANE(P->bsdf_pdf, k), light_pdf(sc, li, lane3(&P->from, k), lane3(&P->D, k), &hk));
+      }
 #endif
     // All of it, its MIS share, or none (nee: the light sample at the previous hit counted it).
     const mask8 counted = !nee || mis ? glows : glows & (P->specular | (h.light < 0));
@@ -1854,13 +1895,15 @@ mask8 path_step8(const scene_t* sc, paths8_t* P, mask8 live) {
   if (nee && any(diffuse)) {
     const float8 u_select = uniform8(&P->g, diffuse);  // drawn with or without a light to sample
     const float8 ua = uniform8(&P->g, diffuse), ub = uniform8(&P->g, diffuse);
-#ifndef HAS_QUAD_LIGHTS
+#if !defined(HAS_QUAD_LIGHTS) && !defined(HAS_SPHERE_LIGHTS)
     (void)u_select, (void)ua, (void)ub;
 #else
     const float8 x = clamp_unit8(u_select) * sc->lights[sc->n_lights - 1].cdf;
     int8 which = (int8)(0);  // upper_bound: the lights whose CDF is at or below x come before
     for (int i = 0; i + 1 < sc->n_lights; ++i) which += select((int8)(0), (int8)(1), (float8)(sc->lights[i].cdf) <= x);
-    const light8_t l = lights8(sc, which);
+#endif
+#ifdef HAS_QUAD_LIGHTS
+    const light8_t l = lights8(sc, which);  // a lane that chose a sphere light: zeros, not lit
     const float8 a = clamp_unit8(ua), b = clamp_unit8(ub);
     const vec8 au = scale8(l.u, a), bv = scale8(l.v, b);
     const vec8 p = add8(add8(l.corner, au), bv);
@@ -1881,6 +1924,26 @@ mask8 path_step8(const scene_t* sc, paths8_t* P, mask8 live) {
                          : (float8)(1.0f);
     share = scale8(mul8(mul8(P->beta, f_cos), e_Le), w / pdf);
     lit = diffuse & (pdf > 0.0f) & isfinite(pdf) & nonzero8(wi) & nonzero8(e_Le) & nonzero8(f_cos);
+#endif
+#ifdef HAS_SPHERE_LIGHTS
+    // The lanes whose light is a sphere: the one-path loop's next event, lane by lane (the
+    // shadow segments then go through occluded8 with the others').
+    for (int k = 0; k < LANES; ++k) {
+      if (!LANE_INT(diffuse, k) || sc->lights[LANE_INT(which, k)].kind != LIGHT_SPHERE) continue;
+      const hit_t hk = lane_hit(&h, k);
+      light_sample_t e;  // sample_light chooses the same light again from u_select
+      if (!sample_light(sc, &hk, LANE(u_select, k), (float2)(LANE(ua, k), LANE(ub, k)), &e) || is_black(e.Le)) continue;
+      global const material_t* mk = &sc->materials[hk.material];
+      const float3 wok = -lane3(&P->D, k);
+      const float3 f_cos = brdf_cos(mk, &hk, wok, e.wi);
+      if (is_black(f_cos)) continue;
+      const float w = mis && !e.delta ? power_heuristic(e.pdf, scatter_pdf(mk, &hk, wok, e.wi)) : 1.0f;
+      set_lane3(&share, k, lane3(&P->beta, k) * f_cos * e.Le * (w / e.pdf));
+      set_lane3(&so, k, e.origin);
+      set_lane3(&sd, k, e.direction);
+      ((float*)&st)[k] = e.t_max;
+      ((int*)&lit)[k] = -1;
+    }
 #endif
   }
   // scatter(): Lambert samples the cosine (three numbers, the third for a lobe it does not have)

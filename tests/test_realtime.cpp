@@ -964,8 +964,21 @@ TEST_CASE("the eight-lane loop: path.hpp's samples in path.hpp's order (paired; 
     check_paired("no light", open, m, 13, 5, &options);
     if (!options.empty()) CHECK(options.find("-DPATH_LANES") != std::string::npos);
   }
-  // A spherical light and a sky are not covered: that scene takes the one-path loop.
-  CHECK(build_options(pack_scene(spheres_scene(), 8, 8, method(integrator::mis, 8)).features).find("PATH_LANES") ==
+  // A spherical light and a world-space checker (book 4.3's scene): the lanes call the one-path
+  // loop's sample_light, light_pdf and albedo lane by lane. The furnace: a sphere light sampled
+  // from its inside. A plane is still not covered: that scene takes the one-path loop.
+  for (integrator m : {integrator::naive, integrator::nee, integrator::mis}) {
+    check_paired("spheres", spheres_scene(), m, 13, 5, &options);
+    CAPTURE(options);
+    if (!options.empty()) CHECK(options.find("-DPATH_LANES") != std::string::npos);
+    if (!options.empty()) CHECK(options.find("-DHAS_SPHERE_LIGHTS") != std::string::npos);
+    if (!options.empty()) CHECK(options.find("-DHAS_CHECKER") != std::string::npos);
+  }
+  check_paired("furnace", furnace_scene(), integrator::mis, 13, 5, &options);
+  if (!options.empty()) CHECK(options.find("-DPATH_LANES") != std::string::npos);
+  scene flat = open;
+  flat.add(plane::from_point_normal({0, -0.5, 0}, {0, 1, 0}), grey);
+  CHECK(build_options(pack_scene(flat, 8, 8, method(integrator::mis, 8)).features).find("PATH_LANES") ==
         std::string::npos);
 }
 

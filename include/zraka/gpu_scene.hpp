@@ -563,13 +563,13 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
 // [end]
 
 // The scenes the kernel's eight-lane loop covers (PATH_LANES, book 4.3): spheres and quads, Lambert
-// without a texture, glass, emitters and quad lights, with any method and camera. Anything else
-// (a plane, a mesh, another material or light, an environment) takes the loop of one path per
-// work item.
+// (solid or a checker in world space), glass, emitters, quad and sphere lights, with any method and
+// camera. Anything else (a plane, a mesh, another material or light, a texture, an environment)
+// takes the loop of one path per work item.
 inline bool lanes_cover(const gpu_features& f) {
-  return !(f.planes || f.triangles || f.metal || f.phong || f.checker || f.rough_conductor || f.rough_dielectric ||
-           f.textures || f.image_textures || f.noise_textures || f.uv_checker || f.environment || f.sphere_lights ||
-           f.triangle_lights || f.point_lights || f.weak_seed);
+  return !(f.planes || f.triangles || f.metal || f.phong || f.rough_conductor || f.rough_dielectric || f.textures ||
+           f.image_textures || f.noise_textures || f.uv_checker || f.environment || f.triangle_lights ||
+           f.point_lights || f.weak_seed);
 }
 // How many pixels a work item of the lanes loop renders: the kernel's float8.
 constexpr int gpu_path_lanes = 8;
