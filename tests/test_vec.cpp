@@ -4,6 +4,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -106,4 +107,22 @@ TEST_CASE_TEMPLATE("vec: is_finite, max_component, constants", T, float, double)
   CHECK(max_component(vec3_t<T>(-5, 2, 1)) == T(2));
   CHECK(pi<T> == T(3.14159265358979323846));
   CHECK(std::isinf(infinity<T>));
+}
+
+// abs3 clears the sign bits (glm::abs keeps -0 as -0 and is a branch per component): the
+// magnitudes of every kind of float, -0 made +0, NaN kept NaN, and the same as glm::abs wherever
+// that is a number other than a zero.
+TEST_CASE_TEMPLATE("vec: abs3 for -0, NaN, inf, subnormal and huge components", T, float, double) {
+  using lim = std::numeric_limits<T>;
+  const vec3_t<T> a = abs3(vec3_t<T>(T(-0.0), -lim::denorm_min(), -lim::max()));
+  CHECK(a == vec3_t<T>(0, lim::denorm_min(), lim::max()));
+  CHECK_FALSE(std::signbit(a.x));
+  const vec3_t<T> b = abs3(vec3_t<T>(-lim::quiet_NaN(), -infinity<T>, T(2.5)));
+  CHECK(std::isnan(b.x));
+  CHECK(b.y == infinity<T>);
+  CHECK(b.z == T(2.5));
+  for (const T x : {T(-3), T(1e-30), T(-1e30), T(7)}) {
+    const vec3_t<T> v(x, -x, x * 2);
+    CHECK(abs3(v) == glm::abs(v));
+  }
 }

@@ -41,7 +41,7 @@ template <class T> T max_component(const vec3_t<T>& v) { return std::max({v.x, v
 
 // |v| component by component. (glm::abs is x >= 0 ? x : -x, which GCC compiles to a branch for
 // each double component: a coin toss in the error bounds computed per ray, which cost a small
-// mesh's BVH a tenth of its time. std::abs only clears the sign bit.)
+// mesh's BVH 8 % of its time, book 5.2. std::abs only clears the sign bit.)
 template <class T> vec3_t<T> abs3(const vec3_t<T>& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
 
 // [listing normalize]
