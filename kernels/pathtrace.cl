@@ -1450,6 +1450,21 @@ bool survives_roulette(float3* beta, int bounce, stream_t* g) {
 #error "build with -DMETHOD_NAIVE, -DMETHOD_NEE or -DMETHOD_MIS (gpu_scene.hpp's build_options)"
 #endif
 
+// [listing cl-next-event]
+// The next event at hit h, whose material m has a density: a point on a light (u_select, u)
+// and what it adds if its shadow segment (e's) is clear, f_cos e.Le times w_over_pdf, still to
+// be weighted by the path's beta. False when it adds nothing. Shared by both loops.
+bool next_event(const scene_t* sc, global const material_t* m, const hit_t* h, float3 wo, float u_select, float2 u,
+                light_sample_t* e, float3* f_cos, float* w_over_pdf) {
+  if (!sample_light(sc, h, u_select, u, e) || is_black(e->Le)) return false;
+  *f_cos = brdf_cos(m, h, wo, e->wi);
+  if (is_black(*f_cos)) return false;
+  const float w = MIS_ON && !e->delta ? power_heuristic(e->pdf, scatter_pdf(m, h, wo, e->wi)) : 1.0f;
+  *w_over_pdf = w / e->pdf;
+  return true;
+}
+// [end]
+
 // [listing cl-path]
 float3 path_radiance(const scene_t* sc, float3 o, float3 D, stream_t* g) {
   const bool nee = NEE_ON, mis = MIS_ON;
@@ -1487,15 +1502,10 @@ float3 path_radiance(const scene_t* sc, float3 o, float3 D, stream_t* g) {
       const float u_select = uniform(g);
       const float2 u = uniform2(g);
       light_sample_t e;
-      if (sample_light(sc, &h, u_select, u, &e) && !is_black(e.Le)) {
-        const float3 f_cos = brdf_cos(m, &h, wo, e.wi);
-        if (!is_black(f_cos)) {
-          if (!occluded(sc, e.origin, e.direction, e.t_max)) {
-            const float w = mis && !e.delta ? power_heuristic(e.pdf, scatter_pdf(m, &h, wo, e.wi)) : 1.0f;
-            L += beta * f_cos * e.Le * (w / e.pdf);
-          }
-        }
-      }
+      float3 f_cos;
+      float w_over_pdf;
+      if (next_event(sc, m, &h, wo, u_select, u, &e, &f_cos, &w_over_pdf) && !occluded(sc, e.origin, e.direction, e.t_max))
+        L += beta * f_cos * e.Le * w_over_pdf;
     }
     scatter_t s;
     if (!scatter(m, D, &h, g, &s)) return L;  // absorbed (or a light, which does not reflect)
@@ -1932,13 +1942,12 @@ mask8 path_step8(const scene_t* sc, paths8_t* P, mask8 live) {
       if (!LANE_INT(diffuse, k) || sc->lights[LANE_INT(which, k)].kind != LIGHT_SPHERE) continue;
       const hit_t hk = lane_hit(&h, k);
       light_sample_t e;  // sample_light chooses the same light again from u_select
-      if (!sample_light(sc, &hk, LANE(u_select, k), (float2)(LANE(ua, k), LANE(ub, k)), &e) || is_black(e.Le)) continue;
-      global const material_t* mk = &sc->materials[hk.material];
-      const float3 wok = -lane3(&P->D, k);
-      const float3 f_cos = brdf_cos(mk, &hk, wok, e.wi);
-      if (is_black(f_cos)) continue;
-      const float w = mis && !e.delta ? power_heuristic(e.pdf, scatter_pdf(mk, &hk, wok, e.wi)) : 1.0f;
-      set_lane3(&share, k, lane3(&P->beta, k) * f_cos * e.Le * (w / e.pdf));
+      float3 f_cos;
+      float w_over_pdf;
+      if (!next_event(sc, &sc->materials[hk.material], &hk, -lane3(&P->D, k), LANE(u_select, k),
+                      (float2)(LANE(ua, k), LANE(ub, k)), &e, &f_cos, &w_over_pdf))
+        continue;
+      set_lane3(&share, k, lane3(&P->beta, k) * f_cos * e.Le * w_over_pdf);
       set_lane3(&so, k, e.origin);
       set_lane3(&sd, k, e.direction);
       ((float*)&st)[k] = e.t_max;
