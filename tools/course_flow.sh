@@ -19,7 +19,7 @@ build="$(cd "${1:-$root/build}" 2>/dev/null && pwd)" || { echo "course_flow: no 
 limit=10         # seconds a chapter may take at its default settings
 run_timeout=300  # a run that hangs is killed and counted as failed
 window_frames=60
-xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
+xvfb=(xvfb-run -a -s "-screen 0 1280x720x24 -noreset")
 
 # The targets the build tree knows (a chapter skipped at configure time has none).
 targets=$(cmake --build "$build" --target help 2>/dev/null)

@@ -33,7 +33,7 @@ plot 1.6-sinx2-uniform.csv 1.6-sinx2-importance.csv -o "$fig/1.6-sinx2.png" \
 # --- 3.1-3.3
 "$bin/rasterization" --width 320 --height 240 --out 3.1.png >/dev/null && cp 3.1-raster.png "$fig/"
 "$bin/rasterization" --width 64 --height 48 --triangles 0 --out 3.1-square.png >/dev/null && cp 3.1-square-diff.png "$fig/"
-xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
+xvfb=(xvfb-run -a -s "-screen 0 1280x720x24 -noreset")
 "${xvfb[@]}" "$bin/opengl" --frames 3 --screenshot 3.2-triangle.png >/dev/null && cp 3.2-triangle.png "$fig/"
 "${xvfb[@]}" "$bin/opengl" --frames 3 --thesis-stride --screenshot 3.2-thesis-stride.png >/dev/null && cp 3.2-thesis-stride.png "$fig/"
 "${xvfb[@]}" "$bin/tessellation" --frames 3 --level 8 --screenshot 3.2-teapot.png >/dev/null && cp 3.2-teapot.png "$fig/"
@@ -115,7 +115,7 @@ done
 "$bin/pathtrace" --scene "$fig/../../scenes/triangle-light.yaml" --integrator mis --out 4.3-triangle-light-cpu >/dev/null && cp 4.3-triangle-light-cpu.png "$fig/"
 "$bin/realtime" --headless --scene "$fig/../../scenes/textures.yaml" --out 4.3-textures.png >/dev/null && cp 4.3-textures.png "$fig/"
 "$bin/realtime" --headless --scene "$fig/../../scenes/sky.yaml" --out 4.3-sky.png >/dev/null && cp 4.3-sky.png "$fig/"
-xvfb=(xvfb-run -a -s "-screen 0 1280x720x24")
+xvfb=(xvfb-run -a -s "-screen 0 1280x720x24 -noreset")
 "${xvfb[@]}" "$bin/realtime" --frames 16 --width 320 --height 240 --scene cornell-spheres --screenshot 4.3-viewer.png >/dev/null && cp 4.3-viewer.png "$fig/"
 # --- 2.3, 4.2 (path tracing; several minutes on two cores)
 "$bin/pathtrace" --scene cornell-glass --width 160 --height 160 --spp 256 --out 2.3-pathtrace.png >/dev/null && cp 2.3-pathtrace.png "$fig/"

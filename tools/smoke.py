@@ -11,7 +11,7 @@ smoke.txt holds one or more cases; each starts with a `run:` line:
                                files are checked for a valid header)
     absent: <name>             the run must not have left this file behind
     wrap: <command>            run the program through this command (shell-like quoting), e.g.
-                               `xvfb-run -a -s "-screen 0 1280x720x24"` for an X display, or
+                               `xvfb-run -a -s "-screen 0 1280x720x24 -noreset"` for an X display, or
                                `env -u DISPLAY` to take it away; the case is skipped (with a
                                message) when the command is not installed
 Lines starting with # are comments. Runs happen in the current directory (CTest gives each
