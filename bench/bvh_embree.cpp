@@ -134,6 +134,9 @@ int main(int argc, char** argv) {
   app.add_option("--traversal-cost", opt.traversal_cost, "our BVH: SAH cost of a box test (a triangle test = 1)");
   app.add_option("--bins", opt.bins, "our BVH: SAH bins per axis");
   app.add_option("--leaf-block", opt.leaf_block, "our BVH: SAH prices a leaf by its blocks of this many triangles");
+  std::string quantize = "auto";
+  app.add_option("--quantize", quantize,
+                 "our BVH: nodes in half the bytes: auto (a tree larger than eight L2 caches), on or off");
   if (const auto done = zraka::parse_command_line(app, argc, argv)) return *done;
 
   return guarded([&] {
@@ -145,6 +148,9 @@ int main(int argc, char** argv) {
     const simd_level simd = *named;
     if (usable_simd(simd) != simd) throw error("--simd " + simd_name + ": this processor (or build) does not run it");
     if (random_count < 1) throw error("--rays must be at least 1");
+    if (quantize != "auto" && quantize != "on" && quantize != "off")
+      throw error("--quantize must be auto, on or off, got '" + quantize + "'");
+    opt.quantize = quantize == "auto" ? -1 : quantize == "on" ? 1 : 0;
     for (const int d : divs_list)
       if (d < 1 || d > 512) throw error("--divs must be in 1..512, got " + std::to_string(d));
     const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
@@ -188,8 +194,9 @@ int main(int argc, char** argv) {
                     bvh.bytes_per_triangle(), n / best_ours * 1e-6, n / best_embree * 1e-6,
                     best_embree / best_ours, 100 * agreement(ours, theirs));
       }
-      std::printf("%6d build: ours %.3f s, Embree %.3f s, ours/Embree %.2f (wall clock, best of %d)\n", divs,
-                  ours_build, embree_build, ours_build / embree_build, repeat);
+      std::printf("%6d build: ours %.3f s, Embree %.3f s, ours/Embree %.2f (wall clock, best of %d); our nodes %s\n",
+                  divs, ours_build, embree_build, ours_build / embree_build, repeat,
+                  bvh.quantized() ? "quantized (128 bytes)" : "full (256 bytes)");
     }
     std::printf("summary: ratio = our rays/s over Embree's (1 = as fast); build ratio = our build time "
                 "over Embree's; %.1f s in all\n",

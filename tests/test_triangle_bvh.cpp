@@ -63,11 +63,21 @@ std::vector<simd_level> simd_levels() {
   return out;
 }
 
-// The nearest hit and any hit of the eight-wide and the four-wide BVH, at every SIMD level,
-// against the reference, and the BVH's brute force. Returns the number of rays that hit.
+// The eight-wide BVH with its nodes quantized (wide_qnode8), whatever its size.
+bvh_build_options quantized_options() {
+  bvh_build_options o = triangle_bvh::default_options();
+  o.quantize = 1;
+  return o;
+}
+
+// The nearest hit and any hit of the eight-wide BVH (with full and with quantized nodes) and the
+// four-wide one, at every SIMD level, against the reference, and the BVH's brute force. Returns
+// the number of rays that hit.
 int compare(const std::vector<tri_f>& tris, const std::vector<rayf>& rays) {
   const triangle_bvh bvh8(tris);
   const triangle_bvh4 bvh4(tris);
+  const triangle_bvh bvh8q(tris, quantized_options());
+  CHECK((bvh8q.quantized() || bvh8q.node_count() == 0));
   int hits = 0, bad_nearest = 0, bad_brute = 0, bad_any = 0;
   for (const rayf& r : rays) {
     const triangle_bvh_hit want = reference(tris, r, infinity<float>);
@@ -93,6 +103,7 @@ int compare(const std::vector<tri_f>& tris, const std::vector<rayf>& rays) {
       };
       check(bvh8);
       check(bvh4);
+      check(bvh8q);
     }
   }
   CHECK(bad_nearest == 0);
@@ -131,13 +142,13 @@ TEST_CASE("layout: 256-byte 8-wide and 128-byte 4-wide nodes, 160-byte blocks of
   static_assert(sizeof(triangle_bvh_node8) == 256 && alignof(triangle_bvh_node8) == 64);
   static_assert(sizeof(triangle_bvh_node4) == 128 && alignof(triangle_bvh_node4) == 64);
   static_assert(sizeof(packed_triangle) == 40 && sizeof(triangle4) == 160);
-  MESSAGE("SIMD levels run here: " << simd_levels().size() << ", the best " << to_string(cpu_simd()));
+  MESSAGE("SIMD levels run here: " << simd_levels().size() << ", the best " << std::string(to_string(cpu_simd())));
   const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
   for (const int divs : {4, 16}) {
     const mesh m = tessellate(patches, divs);
     const triangle_bvh bvh(m);
     const triangle_bvh4 bvh4(m);
-    MESSAGE("teapot divs " << divs << ": " << m.triangle_count() << " triangles, " << bvh.nodes().size()
+    MESSAGE("teapot divs " << divs << ": " << m.triangle_count() << " triangles, " << bvh.node_count()
                            << " 8-wide nodes (" << bvh4.nodes().size() << " 4-wide), " << bvh.bytes_per_triangle()
                            << " bytes per triangle (" << bvh4.bytes_per_triangle() << "), depth " << bvh.depth());
     CHECK(bvh.input_count() == m.triangle_count());
@@ -145,7 +156,7 @@ TEST_CASE("layout: 256-byte 8-wide and 128-byte 4-wide nodes, 160-byte blocks of
     CHECK(bvh4.bytes_per_triangle() <= 60.0);
     // The 8-wide tree has fewer nodes (not half: a node over a small subtree has fewer than eight
     // children, as its 4-wide twin has fewer than four).
-    CHECK(bvh.nodes().size() * 4 < bvh4.nodes().size() * 3);
+    CHECK(bvh.node_count() * 4 < bvh4.node_count() * 3);
     CHECK(bvh.depth() < bvh_max_depth);
     // The teapot's collapsed rows give zero-area triangles: left out, since never hit.
     CHECK(bvh.triangle_count() < m.triangle_count());
@@ -173,6 +184,87 @@ TEST_CASE("the teapot at several divs: identical to brute force") {
     const int hits = compare(tris, mixed_rays(g, box, 300));
     CHECK(hits > 100);
   }
+}
+
+TEST_CASE("quantized nodes: every child's box read back contains the box, at every scale") {
+  // Random full nodes: boxes at scales 1e-30..1e30, far from the origin or across it, points,
+  // zeros of both signs, subnormal sizes, boxes spanning nearly all of float, unused slots.
+  rng g(11);
+  long children = 0, wrong = 0;
+  float max_growth = 0;  // of a box's extent, relative to its node's
+  for (int it = 0; it < 20000; ++it) {
+    bvh_node8 f{};
+    const float scale = std::ldexp(1.0f, int(g.uniform() * 200) - 100);
+    const float offset = g.uniform() < 0.3 ? 0.0f : float((g.uniform() - 0.5) * 1e30 * (g.uniform() < 0.5 ? 1 : 1e-25));
+    for (int k = 0; k < 8; ++k) {
+      for (int a = 0; a < 3; ++a) {
+        float lo = offset + float(g.uniform() - 0.5) * scale, hi = lo + float(g.uniform()) * scale * float(g.uniform() < 0.2 ? 0 : 1);
+        if (it % 97 == 0) lo = -0.0f, hi = 0.0f;
+        if (it % 89 == 0) lo = -3e38f, hi = 3e38f;
+        if (it % 83 == 0) lo = 1e-44f, hi = 3e-44f;  // subnormal
+        f.box[a][k] = lo, f.box[3 + a][k] = std::max(lo, hi);
+      }
+      f.child[k] = std::uint32_t(k), f.count[k] = std::uint32_t(k % 3);
+      if (g.uniform() < 0.15 && k > 0)  // an unused slot: an empty box
+        for (int a = 0; a < 3; ++a) f.box[a][k] = infinity<float>, f.box[3 + a][k] = -infinity<float>;
+    }
+    wide_qnode8 q;
+    REQUIRE(quantize(f, q));
+    for (int k = 0; k < 8; ++k) {
+      const bool used = f.box[0][k] <= f.box[3][k];
+      wrong += used != bool((q.used >> k) & 1u);
+      if (!used) continue;
+      ++children;
+      wrong += q.child[k] != f.child[k] || q.count[k] != f.count[k];
+      for (int a = 0; a < 3; ++a) {
+        const float lo = detail::dequantize(q.q[a][k], q.scale[a], q.origin[a]);
+        const float hi = detail::dequantize(q.q[3 + a][k], q.scale[a], q.origin[a]);
+        wrong += !(lo <= f.box[a][k]) || !(hi >= f.box[3 + a][k]);
+        float node_lo = infinity<float>, node_hi = -infinity<float>;
+        for (int j = 0; j < 8; ++j)
+          if (f.box[0][j] <= f.box[3][j]) node_lo = std::min(node_lo, f.box[a][j]), node_hi = std::max(node_hi, f.box[3 + a][j]);
+        if (node_hi > node_lo && std::isfinite(node_hi - node_lo))
+          max_growth = std::max(max_growth, ((hi - lo) - (f.box[3 + a][k] - f.box[a][k])) / (node_hi - node_lo));
+      }
+    }
+  }
+  MESSAGE(children << " children, largest growth of a box " << max_growth << " of its node's extent");
+  CHECK(wrong == 0);
+  CHECK(max_growth <= 2.0f / 255 * 2);  // a step of scale at each end, scale at most twice extent / 255
+}
+
+TEST_CASE("nodes are quantized only for a tree larger than eight L2 caches, or when asked") {
+  CHECK(detail::l2_cache_bytes() >= 64 * 1024);
+  CHECK(detail::quantize_above_bytes() == 8 * detail::l2_cache_bytes());
+  const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
+  const mesh m = tessellate(patches, 8);  // 4,096 triangles, about 200 kB
+  const triangle_bvh small(m);
+  CHECK_FALSE(small.quantized());
+  CHECK(small.node_count() == small.nodes().size());
+  const triangle_bvh asked(m, quantized_options());
+  CHECK(asked.quantized());
+  CHECK(asked.nodes().empty());
+  CHECK(asked.node_count() == small.node_count());  // the same tree
+  CHECK(asked.bytes() < small.bytes());
+  bvh_build_options full = triangle_bvh::default_options();
+  full.quantize = 0;
+  // Soups of small triangles whose full trees are just under and just over the threshold.
+  rng g(5);
+  std::vector<tri_f> soup;
+  const auto grow_to = [&](std::size_t count) {
+    while (soup.size() < count) {
+      const vec3f p(float(g.uniform()), float(g.uniform()), float(g.uniform()));
+      soup.push_back({p, p + vec3f(0.01f, 0, 0), p + vec3f(0, 0.01f, 0)});
+    }
+  };
+  grow_to(detail::quantize_above_bytes() / 64);
+  const triangle_bvh below(soup);
+  CHECK(triangle_bvh(soup, full).bytes() <= detail::quantize_above_bytes());
+  CHECK_FALSE(below.quantized());
+  grow_to(detail::quantize_above_bytes() / 40);
+  CHECK(triangle_bvh(soup, full).bytes() > detail::quantize_above_bytes());
+  CHECK(triangle_bvh(soup).quantized());
+  CHECK_FALSE(triangle_bvh(soup, full).quantized());
 }
 
 TEST_CASE("random soups, small and large triangles: identical to brute force") {

@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
         total_mismatches += x.mismatches;
         const std::string of = x.brute_rays == int(sets[k].size()) ? "all" : std::to_string(x.brute_rays) + "*";
         std::printf("%5d %9zu %8.3f %8zu %6.1f %5d | %-6s %9.3f %8.1f %8.1f | %9.3g %6s %9.0f %3d/%-3d\n",
-                    divs, m.triangle_count(), build_s, bvh.nodes().size(), bvh.bytes_per_triangle(),
+                    divs, m.triangle_count(), build_s, bvh.node_count(), bvh.bytes_per_triangle(),
                     bvh.depth(), k == 0 ? "camera" : "random", x.bvh_rays_per_s * 1e-6,
                     x.boxes_per_ray, x.triangles_per_ray, x.brute_rays_per_s, of.c_str(),
                     x.bvh_rays_per_s / x.brute_rays_per_s, x.checked - x.mismatches, x.checked);

@@ -101,7 +101,14 @@ template <int N> class wide_triangle_bvh {
     build(tris, opt);
   }
 
+  // The full nodes; none where the tree is quantized (below).
   const std::vector<node>& nodes() const { return nodes_; }
+  // Eight-wide only: the nodes in half the bytes (wide_bvh.hpp's wide_qnode8), which the walks
+  // then use instead. The build quantizes a tree larger than eight L2 caches (bvh_build_options::
+  // quantize, detail::quantize_above_bytes); a tree is quantized once and stays so.
+  const std::vector<wide_qnode8>& quantized_nodes() const { return qnodes_; }
+  bool quantized() const { return !qnodes_.empty(); }
+  std::size_t node_count() const { return nodes_.size() + qnodes_.size(); }
   const std::vector<triangle4>& blocks() const { return blocks_; }  // in leaf order
   // Triangle k of the blocks (lane k % 4 of block k / 4): a leaf's triangles are the positions
   // [child, child + count) of its node; empty lanes have id UINT32_MAX.
@@ -116,7 +123,7 @@ template <int N> class wide_triangle_bvh {
   int depth() const { return depth_; }
   // Memory of nodes and triangle data, and that per input triangle.
   std::size_t bytes() const {
-    return nodes_.size() * sizeof(node) + blocks_.size() * sizeof(triangle4);
+    return nodes_.size() * sizeof(node) + qnodes_.size() * sizeof(wide_qnode8) + blocks_.size() * sizeof(triangle4);
   }
   double bytes_per_triangle() const {
     return input_count_ ? double(bytes()) / double(input_count_) : 0.0;
@@ -218,18 +225,18 @@ template <int N> class wide_triangle_bvh {
   bool nearest(const bvh_ray& r, float t_min, float t_max, triangle_bvh_hit& h, bvh_stats* stats, Simd simd) const {
     if (!r.valid) return false;
     const auto r4 = ray4(r);
-    return wide_nearest(
-        nodes_, r.box, t_min, t_max,
-        [&](std::uint32_t first, std::uint32_t n, float& t_cull) {
-          bool found = false;
-          for (std::uint32_t k = 0; k < n; k += 4)
-            if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_cull, h, simd)) {
-              found = true;
-              t_cull = h.t;
-            }
-          return found;
-        },
-        stats, simd);
+    auto leaf = [&](std::uint32_t first, std::uint32_t n, float& t_cull) {
+      bool found = false;
+      for (std::uint32_t k = 0; k < n; k += 4)
+        if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_cull, h, simd)) {
+          found = true;
+          t_cull = h.t;
+        }
+      return found;
+    };
+    if constexpr (N == 8)
+      if (quantized()) return wide_nearest(qnodes_, r.box, t_min, t_max, leaf, stats, simd);
+    return wide_nearest(nodes_, r.box, t_min, t_max, leaf, stats, simd);
   }
   // [end]
 
@@ -237,16 +244,16 @@ template <int N> class wide_triangle_bvh {
   bool any(const bvh_ray& r, float t_min, float t_max, bvh_stats* stats, Simd simd) const {
     if (!r.valid) return false;
     const auto r4 = ray4(r);
-    return wide_any(
-        nodes_, r.box, t_min, t_max,
-        [&](std::uint32_t first, std::uint32_t n) {
-          for (std::uint32_t k = 0; k < n; k += 4) {
-            triangle_bvh_hit ignored;
-            if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_max, ignored, simd)) return true;
-          }
-          return false;
-        },
-        stats, simd);
+    auto leaf = [&](std::uint32_t first, std::uint32_t n) {
+      for (std::uint32_t k = 0; k < n; k += 4) {
+        triangle_bvh_hit ignored;
+        if (test_block(blocks_[(first + k) / 4], r, r4, t_min, t_max, ignored, simd)) return true;
+      }
+      return false;
+    };
+    if constexpr (N == 8)
+      if (quantized()) return wide_any(qnodes_, r.box, t_min, t_max, leaf, stats, simd);
+    return wide_any(nodes_, r.box, t_min, t_max, leaf, stats, simd);
   }
 
   // [listing simd-walks]
@@ -294,6 +301,7 @@ template <int N> class wide_triangle_bvh {
 #endif
 
   std::vector<node> nodes_;
+  std::vector<wide_qnode8> qnodes_;  // instead of nodes_, where quantized (eight-wide only)
   std::vector<triangle4> blocks_;
   std::size_t triangle_count_ = 0;
   std::size_t input_count_ = 0;
@@ -382,6 +390,17 @@ void wide_triangle_bvh<N>::build(const std::vector<triangle_t<float>>& tris, con
         blocks_.back().id[j % 4] = i;
       }
     }
+  if constexpr (N == 8) {
+    if (opt.quantize == 1 || (opt.quantize < 0 && bytes() > detail::quantize_above_bytes())) {
+      std::vector<wide_qnode8> q(nodes_.size());
+      bool all = true;
+      for (std::size_t k = 0; k < q.size() && all; ++k) all = quantize(nodes_[k], q[k]);
+      if (all) {
+        qnodes_ = std::move(q);
+        nodes_ = {};
+      }
+    }
+  }
 }
 
 using triangle_bvh = wide_triangle_bvh<8>;   // the CPU's
