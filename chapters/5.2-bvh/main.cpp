@@ -168,9 +168,9 @@ int main(int argc, char** argv) {
 
     const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
     std::printf("teapot: %zu patches; BVH: SAH with %d bins, leaves of at most %d in blocks of %d, C_trav %g; "
-                "%d-wide nodes, %s box tests\n",
+                "%d-wide nodes, %s box tests; q: nodes in half the bytes (trees over %.0f MiB)\n",
                 patches.size(), s.build.bins, s.build.max_leaf_size, s.build.leaf_block, s.build.traversal_cost,
-                triangle_bvh::width, to_string(cpu_simd()));
+                triangle_bvh::width, to_string(cpu_simd()), double(detail::quantize_above_bytes()) / (1 << 20));
     std::printf("rays: camera %dx%d = %d, random %d (origins in the teapot's box grown 20%%)\n\n",
                 s.width, s.height, s.width * s.height, s.random_rays);
     std::printf("%5s %9s %8s %8s %6s %5s | %-6s %9s %8s %8s | %9s %6s %9s %7s\n", "divs",
@@ -196,8 +196,9 @@ int main(int argc, char** argv) {
         const measurement& x = r.m[k] = measure(bvh, sets[k], s, k == 0 && divs == s.heat_divs ? &heat_counts : nullptr);
         total_mismatches += x.mismatches;
         const std::string of = x.brute_rays == int(sets[k].size()) ? "all" : std::to_string(x.brute_rays) + "*";
-        std::printf("%5d %9zu %8.3f %8zu %6.1f %5d | %-6s %9.3f %8.1f %8.1f | %9.3g %6s %9.0f %3d/%-3d\n",
+        std::printf("%5d %9zu %8.3f %8zu %5.1f%c %5d | %-6s %9.3f %8.1f %8.1f | %9.3g %6s %9.0f %3d/%-3d\n",
                     divs, m.triangle_count(), build_s, bvh.node_count(), bvh.bytes_per_triangle(),
+                    bvh.quantized() ? 'q' : ' ',
                     bvh.depth(), k == 0 ? "camera" : "random", x.bvh_rays_per_s * 1e-6,
                     x.boxes_per_ray, x.triangles_per_ray, x.brute_rays_per_s, of.c_str(),
                     x.bvh_rays_per_s / x.brute_rays_per_s, x.checked - x.mismatches, x.checked);
