@@ -407,9 +407,9 @@ watertight_ray_t watertight_ray(float3 o, float3 D) {
     r.kx = r.ky;
     r.ky = k;
   }
-  r.sx = component(D, r.kx) / component(D, r.kz);
-  r.sy = component(D, r.ky) / component(D, r.kz);
   r.sz = 1.0f / component(D, r.kz);
+  r.sx = component(D, r.kx) * r.sz;
+  r.sy = component(D, r.ky) * r.sz;
   return r;
 }
 
@@ -448,7 +448,7 @@ bool watertight_test(const watertight_ray_t* r, float3 A, float3 B, float3 C, fl
 }
 
 // t = s / (n.D), s = n.(A - O): accepted when both signs are beyond their rounding errors.
-bool t_certainly_positive(float3 A, float3 B, float3 C, float3 O, float3 D) {
+bool t_certainly_positive_in_double(float3 A, float3 B, float3 C, float3 O, float3 D) {
   const double3 a = convert_double3(A), e1 = convert_double3(B) - a, e2 = convert_double3(C) - a;
   const double3 w = a - convert_double3(O), d = convert_double3(D);
   const double3 n = (double3)(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
@@ -462,6 +462,29 @@ bool t_certainly_positive(float3 A, float3 B, float3 C, float3 O, float3 D) {
   return fabs(s) > GAMMA_D(9) * (n_abs.x * aw.x + n_abs.y * aw.y + n_abs.z * aw.z) &&
          fabs(n_dot_d) > GAMMA_D(8) * (n_abs.x * ad.x + n_abs.y * ad.y + n_abs.z * ad.z) &&
          (s > 0.0) == (n_dot_d > 0.0);
+}
+
+// Asked in float first (1 yes, 0 no, -1 don't know): triangle.hpp's t_positive_in_float.
+int t_positive_in_float(float3 A, float3 B, float3 C, float3 O, float3 D) {
+  const float3 e1 = B - A, e2 = C - A, w = A - O;
+  const float3 n = (float3)(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
+  const float3 n_abs = (float3)(fabs(e1.y * e2.z) + fabs(e1.z * e2.y), fabs(e1.z * e2.x) + fabs(e1.x * e2.z),
+                                fabs(e1.x * e2.y) + fabs(e1.y * e2.x));
+  const float3 aw = fabs(w), ad = fabs(D);
+  const float s = n.x * w.x + n.y * w.y + n.z * w.z;
+  const float n_dot_d = n.x * D.x + n.y * D.y + n.z * D.z;
+  const float scale = 0x1p32f, underflow = 0x1p-91f;  // 2^-123 at scale: flushed products too
+  const float s_bound = (2.0f * GAMMA(10) * scale) * (n_abs.x * aw.x + n_abs.y * aw.y + n_abs.z * aw.z) +
+                        underflow * (aw.x + aw.y + aw.z + 1.0f);
+  const float d_bound = (2.0f * GAMMA(9) * scale) * (n_abs.x * ad.x + n_abs.y * ad.y + n_abs.z * ad.z) +
+                        underflow * (ad.x + ad.y + ad.z + 1.0f);
+  if (!(fabs(s) * scale > s_bound && fabs(n_dot_d) * scale > d_bound)) return -1;
+  return (s > 0.0f) == (n_dot_d > 0.0f);
+}
+
+bool t_certainly_positive(float3 A, float3 B, float3 C, float3 O, float3 D) {
+  const int sure = t_positive_in_float(A, B, C, O, D);
+  return sure >= 0 ? sure == 1 : t_certainly_positive_in_double(A, B, C, O, D);
 }
 
 // triangle_bvh.hpp's leaf test: ties at equal t go to the lower input index.
