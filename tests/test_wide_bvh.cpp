@@ -437,3 +437,37 @@ TEST_CASE_TEMPLATE("the box test's ray setup, on special components", T, float, 
         }
   CHECK(checked == 14 * 14 * 14 * 4);
 }
+
+// box4_ray prepares a float ray with SSE where it can (wide_bvh.hpp): every member must equal the
+// plain loop's, bit for bit, on every combination of special components of origin and direction.
+TEST_CASE("box4_ray: the SSE preparation of a float ray equals the plain loop's") {
+  const float big = std::numeric_limits<float>::max(), tiny = std::numeric_limits<float>::denorm_min(),
+              small = std::numeric_limits<float>::min(), nan = std::numeric_limits<float>::quiet_NaN();
+  const float values[] = {0.0f, -0.0f, 1.0f, -2.5f, tiny, -tiny, small, -small, 3e-39f, big, -big,
+                          1e38f, infinity<float>, -infinity<float>, nan};
+  const auto bits = [](float x) { return std::bit_cast<std::uint32_t>(x); };
+  int checked = 0, exact = 0, valid = 0;
+  for (const float x : values)
+    for (const float y : values)
+      for (const float z : values) {
+        ray_t<float> r(vec3f(1, 2, 3), vec3f(1, 0, 0));
+        r.direction = vec3f(x, y, z);  // set after the constructor, which refuses some
+        r.origin = vec3f(y, z, x);
+        const box4_ray fast(r), plain(r, simd_scalar{});
+        for (int a = 0; a < 3; ++a) {
+          REQUIRE(bits(fast.inv_direction[a]) == bits(plain.inv_direction[a]));
+          REQUIRE(bits(fast.near_origin[a]) == bits(plain.near_origin[a]));
+          REQUIRE(bits(fast.far_origin[a]) == bits(plain.far_origin[a]));
+          REQUIRE(fast.near_row[a] == plain.near_row[a]);
+          REQUIRE(fast.far_row[a] == plain.far_row[a]);
+        }
+        REQUIRE(fast.valid == plain.valid);
+        REQUIRE(fast.exact == plain.exact);
+        ++checked, exact += plain.exact, valid += plain.valid;
+      }
+  CHECK(checked == 15 * 15 * 15);
+  CHECK(exact > 100);  // both outcomes occur
+  CHECK(exact < checked);
+  CHECK(valid > 100);
+  CHECK(valid < checked);
+}

@@ -95,6 +95,16 @@ struct box4_ray {
   bool valid = false;  // a finite origin and a finite, non-zero direction
   bool exact = true;
   template <class T> explicit box4_ray(const ray_t<T>& r) {
+#if ZRAKA_HAS_SSE
+    if constexpr (std::is_same_v<T, float>) {
+      prepare_sse(r);
+      return;
+    }
+#endif
+    prepare(r);
+  }
+  template <class T> box4_ray(const ray_t<T>& r, simd_scalar) { prepare(r); }
+  template <class T> void prepare(const ray_t<T>& r) {
     // Every test below is a bitwise & or | of comparisons and every choice a select, not a
     // branch: for incoherent rays the signs of the direction are coin tosses, and mispredicted
     // branches made this setup a sixth of a small mesh's walk.
@@ -122,6 +132,34 @@ struct box4_ray {
     valid = finite & nonzero;
     exact = in_range;
   }
+#if ZRAKA_HAS_SSE
+  // The same with the three axes in SSE lanes (lane 3 a dummy 1): one division instead of three,
+  // and the tests as four-lane comparisons (a quarter of the instructions of a small mesh's ray
+  // went to this setup). The same members, bit for bit (test_triangle_bvh.cpp).
+  void prepare_sse(const ray_t<float>& r) {
+    const __m128 o = _mm_setr_ps(r.origin.x, r.origin.y, r.origin.z, 0.0f);
+    const __m128 d = _mm_setr_ps(r.direction.x, r.direction.y, r.direction.z, 1.0f);
+    const __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), d);
+    float lanes[4];
+    _mm_storeu_ps(lanes, inv);
+    const int negative = _mm_movemask_ps(d);  // the sign bits, as std::signbit
+    for (int a = 0; a < 3; ++a) {
+      inv_direction[a] = lanes[a];
+      const int n = (negative >> a) & 1;
+      near_row[a] = a + 3 * n;
+      far_row[a] = a + 3 - 3 * n;
+      near_origin[a] = far_origin[a] = glm::value_ptr(r.origin)[a];
+    }
+    const __m128 magnitude = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+    const __m128 abs_o = _mm_and_ps(o, magnitude), abs_inv = _mm_and_ps(inv, magnitude);
+    const int finite = _mm_movemask_ps(_mm_and_ps(_mm_cmplt_ps(abs_o, _mm_set1_ps(infinity<float>)), _mm_cmpord_ps(d, d)));
+    const int zero = _mm_movemask_ps(_mm_cmpeq_ps(d, _mm_setzero_ps()));
+    const int in_range = _mm_movemask_ps(_mm_and_ps(_mm_cmpge_ps(abs_inv, _mm_set1_ps(std::numeric_limits<float>::min())),
+                                                    _mm_cmple_ps(abs_inv, _mm_set1_ps(std::numeric_limits<float>::max()))));
+    valid = (finite & 7) == 7 && (~zero & 7) != 0;
+    exact = ((zero | in_range) & 7) == 7;
+  }
+#endif
 };
 // [end]
 
