@@ -443,8 +443,9 @@ TEST_CASE_TEMPLATE("the box test's ray setup, on special components", T, float, 
 TEST_CASE("box4_ray: the SSE preparation of a float ray equals the plain loop's") {
   const float big = std::numeric_limits<float>::max(), tiny = std::numeric_limits<float>::denorm_min(),
               small = std::numeric_limits<float>::min(), nan = std::numeric_limits<float>::quiet_NaN();
-  const float values[] = {0.0f, -0.0f, 1.0f, -2.5f, tiny, -tiny, small, -small, 3e-39f, big, -big,
-                          1e38f, infinity<float>, -infinity<float>, nan};
+  const float values[] = {0.0f, -0.0f, 1.0f, -2.5f, tiny, -tiny, small, -small, 3e-39f, big, -big, 1e38f,
+                          0x1p126f, -0x1p126f,  // 1 / D exactly float's smallest normal: still exact
+                          0x1p-128f, infinity<float>, -infinity<float>, nan};
   const auto bits = [](float x) { return std::bit_cast<std::uint32_t>(x); };
   int checked = 0, exact = 0, valid = 0;
   for (const float x : values)
@@ -465,7 +466,7 @@ TEST_CASE("box4_ray: the SSE preparation of a float ray equals the plain loop's"
         REQUIRE(fast.exact == plain.exact);
         ++checked, exact += plain.exact, valid += plain.valid;
       }
-  CHECK(checked == 15 * 15 * 15);
+  CHECK(checked == 18 * 18 * 18);
   CHECK(exact > 100);  // both outcomes occur
   CHECK(exact < checked);
   CHECK(valid > 100);
