@@ -568,8 +568,9 @@ void prefetch_node([[maybe_unused]] const std::vector<Node>& nodes, [[maybe_unus
 // nearer than its box; test a leaf, or a node's N boxes (with the instructions of `simd`). A
 // node with one box hit goes on to that child directly (the most common case, and no trip
 // through the stack's memory); with two, the farther is pushed and the nearer walked at once;
-// with more, they are pushed farthest first (nearest on top). A ray that is not `exact` visits
-// every box: slower, never wrong.
+// with three, the same after a sort by three exchanges without branches; with more, they are
+// pushed farthest first (nearest on top). A ray that is not `exact` visits every box: slower,
+// never wrong.
 template <class Node, class Leaf, class Simd = simd_default>
 bool wide_nearest(const std::vector<Node>& nodes, const box4_ray& r, float t_min, float t_cull, Leaf&& leaf,
                   bvh_stats* stats = nullptr, Simd simd = {}) {
@@ -607,6 +608,24 @@ bool wide_nearest(const std::vector<Node>& nodes, const box4_ray& r, float t_min
           stack[std::size_t(top++)] = {n.child[k_far], n.count[k_far], t[k_far]};
           detail::prefetch_node(nodes, n, k_far);
           e = {n.child[k_near], n.count[k_near], t[k_near]};
+          continue;
+        }
+        // Three: sorted by three exchanges of that kind (an insertion sort's comparisons are
+        // branches, coin tosses for incoherent rays), the two farther pushed, on to the nearest.
+        if (const unsigned rest = mask & (mask - 1), rest2 = rest & (rest - 1);
+            rest2 != 0 && (rest2 & (rest2 - 1)) == 0) {
+          int k0 = std::countr_zero(mask), k1 = std::countr_zero(rest), k2 = std::countr_zero(rest2);
+          int swap = (k0 ^ k1) & -int(t[k1] < t[k0]);
+          k0 ^= swap, k1 ^= swap;
+          swap = (k1 ^ k2) & -int(t[k2] < t[k1]);
+          k1 ^= swap, k2 ^= swap;
+          swap = (k0 ^ k1) & -int(t[k1] < t[k0]);
+          k0 ^= swap, k1 ^= swap;
+          stack[std::size_t(top++)] = {n.child[k2], n.count[k2], t[k2]};
+          stack[std::size_t(top++)] = {n.child[k1], n.count[k1], t[k1]};
+          detail::prefetch_node(nodes, n, k2);
+          detail::prefetch_node(nodes, n, k1);
+          e = {n.child[k0], n.count[k0], t[k0]};
           continue;
         }
         const int first = top;
