@@ -209,7 +209,7 @@ TEST_CASE("quantized nodes: every child's box read back contains the box, at eve
         for (int a = 0; a < 3; ++a) f.box[a][k] = infinity<float>, f.box[3 + a][k] = -infinity<float>;
     }
     wide_qnode8 q;
-    REQUIRE(quantize(f, q));
+    REQUIRE_NOTHROW(quantize(f, q));
     for (int k = 0; k < 8; ++k) {
       const bool used = f.box[0][k] <= f.box[3][k];
       wrong += used != bool((q.used >> k) & 1u);
@@ -228,6 +228,12 @@ TEST_CASE("quantized nodes: every child's box read back contains the box, at eve
       }
     }
   }
+  // A leaf count that does not fit a byte is refused, not cut (bvh.hpp never builds one).
+  bvh_node8 too_big{};
+  too_big.box[0][0] = too_big.box[1][0] = too_big.box[2][0] = 0;
+  too_big.count[0] = 256;
+  wide_qnode8 q;
+  CHECK_THROWS_WITH(quantize(too_big, q), doctest::Contains("at most 255"));
   MESSAGE(children << " children, largest growth of a box " << max_growth << " of its node's extent");
   CHECK(wrong == 0);
   CHECK(max_growth <= 2.0f / 255 * 2);  // a step of scale at each end, scale at most twice extent / 255

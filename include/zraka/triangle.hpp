@@ -250,10 +250,11 @@ bool t_certainly_positive_in_double(const vec3_t<T>& A, const vec3_t<T>& B, cons
 // The same question asked in float first, for float input, which answers most hits at half the
 // cost (book 5.2): the same formulas with float's unit roundoff, two spare roundings for the
 // bounds computed in float, a term for products that underflow (each may lose 2^-126 where the
-// processor flushes subnormals to zero, and s multiplies n's error by |w|), and all of it twice over. When both signs clear their bounds,
-// |s| and |n.D| exceed float's error by more than double's error and bound together, so the
-// double test above would be certain of the same signs: the answer is its answer, bit for bit.
-// Otherwise (near the plane, grazing, slivers, overflow, NaN) it says "don't know" (-1).
+// processor flushes subnormals to zero, and s multiplies n's error by |w|), and all of it twice
+// over. When both signs clear their bounds, |s| and |n.D| exceed float's error by more than
+// double's error and bound together, so the double test above would be certain of the same
+// signs: the answer is its answer, bit for bit. Otherwise (near the plane, grazing, slivers,
+// overflow, NaN) it says "don't know" (-1).
 inline int t_positive_in_float(const vec3_t<float>& A, const vec3_t<float>& B, const vec3_t<float>& C,
                                const vec3_t<float>& O, const vec3_t<float>& D) {
   const vec3_t<float> e1 = B - A, e2 = C - A, w = A - O;

@@ -392,13 +392,9 @@ void wide_triangle_bvh<N>::build(const std::vector<triangle_t<float>>& tris, con
     }
   if constexpr (N == 8) {
     if (opt.quantize == 1 || (opt.quantize < 0 && bytes() > detail::quantize_above_bytes())) {
-      std::vector<wide_qnode8> q(nodes_.size());
-      bool all = true;
-      for (std::size_t k = 0; k < q.size() && all; ++k) all = quantize(nodes_[k], q[k]);
-      if (all) {
-        qnodes_ = std::move(q);
-        nodes_ = {};
-      }
+      qnodes_.resize(nodes_.size());
+      for (std::size_t k = 0; k < nodes_.size(); ++k) quantize(nodes_[k], qnodes_[k]);
+      nodes_ = {};
     }
   }
 }
