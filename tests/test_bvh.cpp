@@ -456,6 +456,28 @@ TEST_CASE("leaf_block: leaves priced by blocks fill their blocks, and still equa
   check_structure(bvh_of(tris, one_block), tris.size(), 16);
 }
 
+TEST_CASE_TEMPLATE("leaf_block: a leaf of n costs ceil(n / b) tests, b a power of two or not", T, float, double) {
+  // Eight unit cubes in a row (x from 0 to 8). Worked out by hand with the SAH of bvh.hpp:
+  // the whole row has area 34, a row of k cubes 2 (2k + 1).
+  std::vector<aabb_t<T>> boxes;
+  for (int i = 0; i < 8; ++i) boxes.push_back({vec3_t<T>(T(i), 0, 0), vec3_t<T>(T(i + 1), 1, 1)});
+  auto leaves = [&](int block, double trav) {
+    bvh_build_options o;
+    o.max_leaf_size = 8;
+    o.leaf_block = block;
+    o.traversal_cost = trav;
+    std::vector<int> counts;
+    for (const auto& n : build_bvh(boxes, o).nodes)
+      if (n.leaf()) counts.push_back(n.count);
+    return counts;
+  };
+  // b = 4 (a shift): one leaf costs 34 * 2 = 68; the best split, 4 | 4, 34 C_trav + 18 + 18.
+  CHECK(leaves(4, 1.0) == std::vector<int>{8});       // 68 <= 70
+  CHECK(leaves(4, 0.9) == std::vector<int>{4, 4});    // 66.6 < 68
+  // b = 3 (a division): one leaf costs 34 * 3 = 102; 3 | 5 costs 34 + 14 + 22 * 2 = 92, and
+  // the five left over stay a leaf (22 * 2 = 44 against 22 + 10 + 14 = 46).
+  CHECK(leaves(3, 1.0) == std::vector<int>{3, 5});
+}
 TEST_CASE("vector binning builds the same float tree as the plain pass") {
   // bin_primitives<true> grows each bin's bounds four lanes at a time; the tree must not move.
   // Boxes of every kind: the teapot's triangles, flat and point boxes, one repeated centroid,
