@@ -134,6 +134,8 @@ int main(int argc, char** argv) {
   app.add_option("--traversal-cost", opt.traversal_cost, "our BVH: SAH cost of a box test (a triangle test = 1)");
   app.add_option("--bins", opt.bins, "our BVH: SAH bins per axis");
   app.add_option("--leaf-block", opt.leaf_block, "our BVH: SAH prices a leaf by its blocks of this many triangles");
+  app.add_option("--wide-leaf", opt.wide_leaf_size, "our BVH: most triangles in a leaf of the wide tree (collapse by cost)");
+  app.add_option("--node-cost", opt.wide_node_cost, "our BVH: a wide node's cost in leaf blocks (collapse by cost)");
   std::string quantize = "auto";
   app.add_option("--quantize", quantize,
                  "our BVH: nodes in half the bytes: auto (a tree larger than eight L2 caches), on or off");

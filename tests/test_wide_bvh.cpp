@@ -472,3 +472,92 @@ TEST_CASE("box4_ray: the SSE preparation of a float ray equals the plain loop's"
   CHECK(valid > 100);
   CHECK(valid < checked);
 }
+
+namespace {
+// The SAH cost of a wide tree as collapse_by_cost counts it: a wide node c.node, a leaf its
+// blocks, each times the area of its box (the float boxes of the wide nodes, rounded outward).
+template <int N> double wide_cost(const std::vector<wide_node<N>>& nodes, std::uint32_t w, const collapse_costs& c,
+                                  double node_area, std::size_t& leaves_seen, std::vector<int>& seen) {
+  double cost = node_area * c.node;
+  for (int k = 0; k < N; ++k) {
+    const wide_node<N>& n = nodes[w];
+    if (!(n.box[0][k] <= n.box[3][k])) continue;  // unused slot
+    const double dx = double(n.box[3][k]) - n.box[0][k], dy = double(n.box[4][k]) - n.box[1][k],
+                 dz = double(n.box[5][k]) - n.box[2][k];
+    const double area = 2 * (dx * dy + dy * dz + dz * dx);
+    if (n.count[k] != 0) {
+      ++leaves_seen;
+      cost += area * double((n.count[k] + std::uint32_t(c.leaf_block) - 1) / std::uint32_t(c.leaf_block));
+      for (std::uint32_t i = n.child[k]; i < n.child[k] + n.count[k]; ++i) ++seen[i];
+      CHECK(int(n.count[k]) <= c.max_leaf);
+    } else {
+      cost += wide_cost<N>(nodes, n.child[k], c, area, leaves_seen, seen);
+    }
+  }
+  return cost;
+}
+template <int N> double wide_cost(const std::vector<wide_node<N>>& nodes, const bvh_t<float>& b, const collapse_costs& c) {
+  std::size_t leaves = 0;
+  std::vector<int> seen(b.order.size(), 0);
+  const double cost = wide_cost<N>(nodes, 0, c, double(b.nodes[0].box.surface_area()), leaves, seen);
+  for (const int s : seen) REQUIRE(s == 1);  // every position in exactly one leaf
+  return cost;
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("collapse by cost: every primitive once, its cost as counted, never above the greedy collapse",
+                   W, std::integral_constant<int, 4>, std::integral_constant<int, 8>) {
+  constexpr int N = W::value;
+  rng g(41);
+  for (int round = 0; round < 12; ++round) {
+    // Soups of boxes: clustered or spread, of one size or of many.
+    std::vector<aabb_t<float>> boxes;
+    const int n = 20 + int(g.uniform() * 3000);
+    for (int i = 0; i < n; ++i) {
+      const float spread = round % 3 == 0 ? 1.0f : 100.0f;
+      const vec3_t<float> c(float(g.uniform()) * spread, float(g.uniform()) * spread, float(g.uniform()));
+      const float s = round % 2 ? 0.01f : float(std::ldexp(1.0, -int(g.uniform() * 12)));
+      boxes.push_back({c - vec3_t<float>(s), c + vec3_t<float>(s)});
+    }
+    bvh_build_options o;
+    o.max_leaf_size = 1 + int(g.uniform() * 12);
+    o.traversal_cost = 0.5 + 3 * g.uniform();
+    o.leaf_block = round % 4 == 0 ? 1 : 4;
+    const bvh_t<float> b = build_bvh(boxes, o);
+    collapse_costs c;
+    c.node = 1 + 8 * g.uniform();
+    c.leaf_block = o.leaf_block;
+    c.max_leaf = o.max_leaf_size + int(g.uniform() * 16);
+    double reported = 0;
+    const auto by_cost = collapse_by_cost<N>(b, c, &reported);
+    const double cost = wide_cost<N>(by_cost, b, c), greedy = wide_cost<N>(collapse<N>(b), b, c);
+    CAPTURE(round);
+    CAPTURE(n);
+    // The boxes of the wide nodes are the binary ones rounded outward to float: a relative
+    // 1e-6 covers that.
+    CHECK(cost == doctest::Approx(reported).epsilon(1e-6));
+    CHECK(cost <= greedy * (1 + 1e-6));
+  }
+}
+
+TEST_CASE("collapse by cost: a tree cheaper as one leaf is one wide node with one leaf; bad costs are refused") {
+  std::vector<aabb_t<float>> boxes;
+  for (int i = 0; i < 6; ++i) boxes.push_back({vec3_t<float>(float(i), 0, 0), vec3_t<float>(float(i) + 1, 1, 1)});
+  bvh_build_options o;
+  o.max_leaf_size = 1;  // a binary tree of single leaves
+  const bvh_t<float> b = build_bvh(boxes, o);
+  REQUIRE(!b.nodes[0].leaf());
+  collapse_costs c;
+  c.leaf_block = 8;  // six boxes cost one block as a leaf; any node costs more
+  const auto w = collapse_by_cost<4>(b, c);
+  REQUIRE(w.size() == 1);
+  CHECK(w[0].count[0] == 6);
+  CHECK(w[0].child[0] == 0);
+  for (int k = 1; k < 4; ++k) CHECK(!(w[0].box[0][k] <= w[0].box[3][k]));  // the other slots unused
+  c.max_leaf = 5;  // too many for one leaf now: a wide node
+  CHECK(collapse_by_cost<4>(b, c).size() >= 1);
+  CHECK(collapse_by_cost<4>(b, c)[0].count[0] < 6);
+  for (const collapse_costs bad : {collapse_costs{-1, 4, 16}, collapse_costs{5, 0, 16}, collapse_costs{5, 4, 256},
+                                   collapse_costs{std::nan(""), 4, 16}})
+    CHECK_THROWS_WITH_AS(collapse_by_cost<4>(b, bad), doctest::Contains("collapse costs"), error);
+}

@@ -150,6 +150,8 @@ int main(int argc, char** argv) {
   cli.app.add_option("--leaf", s.build.max_leaf_size, "most triangles per leaf");
   cli.app.add_option("--traversal-cost", s.build.traversal_cost, "SAH cost of a box test (a triangle test = 1)");
   cli.app.add_option("--leaf-block", s.build.leaf_block, "SAH prices a leaf by its blocks of this many triangles");
+  cli.app.add_option("--wide-leaf", s.build.wide_leaf_size, "most triangles in a leaf of the wide tree (collapse by cost)");
+  cli.app.add_option("--node-cost", s.build.wide_node_cost, "a wide node's cost in leaf blocks (collapse by cost)");
   if (const auto done = cli.parse(argc, argv)) return *done;
   s.width = cli.width, s.height = cli.height, s.seed = cli.seed, s.out = cli.out;
 
@@ -168,9 +170,11 @@ int main(int argc, char** argv) {
 
     const auto patches = load_bpt(resource_path("scenes/teapot.bpt")).all_patches();
     std::printf("teapot: %zu patches; BVH: SAH with %d bins, leaves of at most %d in blocks of %d, C_trav %g; "
-                "%d-wide nodes, %s box tests; q: nodes in half the bytes (trees over %.0f MiB)\n",
+                "%d-wide nodes chosen by cost (leaves of at most %d, a node %g blocks), %s box tests; "
+                "q: nodes in half the bytes (trees over %.0f MiB)\n",
                 patches.size(), s.build.bins, s.build.max_leaf_size, s.build.leaf_block, s.build.traversal_cost,
-                triangle_bvh::width, to_string(cpu_simd()), double(detail::quantize_above_bytes()) / (1 << 20));
+                triangle_bvh::width, s.build.wide_leaf_size, s.build.wide_node_cost, to_string(cpu_simd()),
+                double(detail::quantize_above_bytes()) / (1 << 20));
     std::printf("rays: camera %dx%d = %d, random %d (origins in the teapot's box grown 20%%)\n\n",
                 s.width, s.height, s.width * s.height, s.random_rays);
     std::printf("%5s %9s %8s %8s %6s %5s | %-6s %9s %8s %8s | %9s %6s %9s %7s\n", "divs",

@@ -44,6 +44,9 @@ struct bvh_build_options {
                                // ceil(n / leaf_block) tests (triangle_bvh.hpp's blocks of four)
   bool vector_binning = true;  // float with SSE: bin a box's six bounds in two instructions;
                                // the same tree (false runs the plain pass, for the tests)
+  int wide_leaf_size = 16;     // triangle_bvh's wide tree (wide_bvh.hpp's collapse_by_cost): a
+                               // leaf may join binary leaves up to this many primitives
+  double wide_node_cost = 5;   // and a wide node costs this many leaf blocks
   int quantize = -1;           // triangle_bvh's eight-wide nodes in half the bytes (wide_bvh.hpp's
                                // wide_qnode8): 1 yes, 0 no, -1 where the tree is larger than
                                // eight L2 caches (there the walk waits for memory)

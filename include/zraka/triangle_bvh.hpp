@@ -75,13 +75,16 @@ template <int N> class wide_triangle_bvh {
   using node = wide_node<N>;
   static constexpr int width = N;  // children a node
   // Defaults measured on the teapot (book 5.2): the SAH prices a leaf by its blocks of four (a
-  // leaf of 5 costs as much as one of 8), so leaves fill their blocks; leaves of up to 16 and a
-  // box test priced at 3 block tests give the fastest walk and the least memory.
+  // leaf of 5 costs as much as one of 8), so leaves fill their blocks. The binary tree is built
+  // to leaves of up to 12 with a box test priced at 2 block tests; the wide tree is then chosen
+  // by cost from it (collapse_by_cost), with leaves of up to 16 and a wide node priced at 5.
   static bvh_build_options default_options() {
     bvh_build_options o;
-    o.max_leaf_size = 16;
-    o.traversal_cost = 3;
+    o.max_leaf_size = 12;
+    o.traversal_cost = 2;
     o.leaf_block = 4;
+    o.wide_leaf_size = 16;
+    o.wide_node_cost = 5;
     return o;
   }
 
@@ -369,7 +372,7 @@ void wide_triangle_bvh<N>::build(const std::vector<triangle_t<float>>& tris, con
   const bvh_t<float> b = build_bvh(boxes, centroids, opt);
   depth_ = b.depth;
   triangle_count_ = b.order.size();
-  nodes_ = collapse<N>(b);
+  nodes_ = collapse_by_cost<N>(b, {opt.wide_node_cost, opt.leaf_block, opt.wide_leaf_size});
   // Each leaf's triangles to whole blocks of four, in leaf order; its child index becomes the
   // position of its first triangle there (4 times its first block).
   triangle4 empty;
