@@ -421,6 +421,16 @@ TEST_CASE("bad build options are refused with a message") {
     o.leaf_block = block;
     CHECK_THROWS_WITH_AS(build_bvh(boxes, o), doctest::Contains("leaf_block"), error);
   }
+  o = {};
+  for (const int leaf : {0, 256}) {  // the triangle BVH's wide tree (collapse_by_cost)
+    o.wide_leaf_size = leaf;
+    CHECK_THROWS_WITH_AS(build_bvh(boxes, o), doctest::Contains("wide_leaf_size"), error);
+  }
+  o = {};
+  for (const double cost : {-1.0, std::nan(""), infinity<double>}) {
+    o.wide_node_cost = cost;
+    CHECK_THROWS_WITH_AS(build_bvh(boxes, o), doctest::Contains("wide_node_cost"), error);
+  }
   CHECK_THROWS_AS(build_bvh(boxes, std::vector<vec3>{}), error);
 }
 

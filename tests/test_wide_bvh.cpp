@@ -557,7 +557,13 @@ TEST_CASE("collapse by cost: a tree cheaper as one leaf is one wide node with on
   c.max_leaf = 5;  // too many for one leaf now: a wide node
   CHECK(collapse_by_cost<4>(b, c).size() >= 1);
   CHECK(collapse_by_cost<4>(b, c)[0].count[0] < 6);
-  for (const collapse_costs bad : {collapse_costs{-1, 4, 16}, collapse_costs{5, 0, 16}, collapse_costs{5, 4, 256},
-                                   collapse_costs{std::nan(""), 4, 16}})
-    CHECK_THROWS_WITH_AS(collapse_by_cost<4>(b, bad), doctest::Contains("collapse costs"), error);
+  const struct {
+    collapse_costs costs;
+    const char* field;
+  } bad[] = {{{-1, 4, 16}, "node"}, {{std::nan(""), 4, 16}, "node"}, {{infinity<double>, 4, 16}, "node"},
+             {{5, 0, 16}, "leaf_block"}, {{5, 4, 0}, "max_leaf"}, {{5, 4, 256}, "max_leaf"}};
+  for (const auto& x : bad) {
+    CAPTURE(x.field);
+    CHECK_THROWS_WITH_AS(collapse_by_cost<4>(b, x.costs), doctest::Contains(x.field), error);
+  }
 }

@@ -391,6 +391,10 @@ bvh_t<T> build_bvh(const std::vector<aabb_t<T>>& boxes, const std::vector<vec3_t
     throw error("bvh: leaf_block must be in 1..255, got " + std::to_string(opt.leaf_block));
   if (!(opt.traversal_cost >= 0) || !std::isfinite(opt.traversal_cost))
     throw error("bvh: traversal_cost must be finite and >= 0");
+  if (opt.wide_leaf_size < 1 || opt.wide_leaf_size > 255)
+    throw error("bvh: wide_leaf_size must be in 1..255, got " + std::to_string(opt.wide_leaf_size));
+  if (!(opt.wide_node_cost >= 0) || !std::isfinite(opt.wide_node_cost))
+    throw error("bvh: wide_node_cost must be finite and >= 0");
   bvh_t<T> out;
   detail::bvh_builder<T>(boxes, centroids, opt, out).run();
   return out;

@@ -460,8 +460,10 @@ std::vector<wide_node<N>> collapse_by_cost(const bvh_t<T>& b, const collapse_cos
   if (b.depth > bvh_max_depth)
     throw error("wide BVH: the tree is " + std::to_string(b.depth) + " levels deep, the traversal stack holds " +
                 std::to_string(bvh_max_depth));
-  if (c.max_leaf < 1 || c.max_leaf > 255 || c.leaf_block < 1 || !(c.node >= 0))
-    throw error("wide BVH: collapse costs out of range (max_leaf 1..255, leaf_block >= 1, node >= 0)");
+  if (c.max_leaf < 1 || c.max_leaf > 255)
+    throw error("wide BVH: collapse costs: max_leaf must be in 1..255, got " + std::to_string(c.max_leaf));
+  if (c.leaf_block < 1) throw error("wide BVH: collapse costs: leaf_block must be at least 1");
+  if (!(c.node >= 0) || !std::isfinite(c.node)) throw error("wide BVH: collapse costs: node must be finite and >= 0");
   std::vector<wide_node<N>> out;
   if (b.empty()) return out;
   out.reserve(b.nodes.size() / (N - 1) + 1);
