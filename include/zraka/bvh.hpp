@@ -19,8 +19,8 @@
 #include <zraka/simd.hpp>
 
 #include <algorithm>
-#include <bit>
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <string>

@@ -281,6 +281,23 @@ template <int N> wide_node<N> empty_wide_node() {
   return n;
 }
 
+// Slot k of wide node w holds binary node n's box, rounded outward to float, and child/count.
+template <int N, class T>
+void set_slot(wide_node<N>& w, int k, const bvh_node_t<T>& n, std::uint32_t child, std::uint32_t count) {
+  for (int a = 0; a < 3; ++a) {
+    w.box[a][k] = float_down(n.box.lo[a]);
+    w.box[3 + a][k] = float_up(n.box.hi[a]);
+  }
+  w.child[k] = child;
+  w.count[k] = count;
+}
+// Both collapses keep the wide tree no deeper than b, so b must fit the traversal stack.
+template <class T> void check_depth(const bvh_t<T>& b) {
+  if (b.depth > bvh_max_depth)
+    throw error("wide BVH: the tree is " + std::to_string(b.depth) + " levels deep, the traversal stack holds " +
+                std::to_string(bvh_max_depth));
+}
+
 // The N children of one wide node are binary nodes; they start as one node's two children.
 template <int N, class T>
 std::uint32_t collapse_node(const bvh_t<T>& b, std::uint32_t first, std::uint32_t second,
@@ -306,12 +323,8 @@ std::uint32_t collapse_node(const bvh_t<T>& b, std::uint32_t first, std::uint32_
   out.push_back(empty_wide_node<N>());
   for (int k = 0; k < count; ++k) {
     const bvh_node_t<T>& n = b.nodes[kids[std::size_t(k)]];
-    for (int a = 0; a < 3; ++a) {
-      out[me].box[a][k] = float_down(n.box.lo[a]);
-      out[me].box[3 + a][k] = float_up(n.box.hi[a]);
-    }
-    out[me].count[k] = n.count;
-    out[me].child[k] = n.leaf() ? n.index : collapse_node<N>(b, kids[std::size_t(k)] + 1, n.index, out);
+    const std::uint32_t child = n.leaf() ? n.index : collapse_node<N>(b, kids[std::size_t(k)] + 1, n.index, out);
+    set_slot(out[me], k, n, child, n.count);
   }
   return me;
 }
@@ -324,20 +337,13 @@ std::uint32_t collapse_node(const bvh_t<T>& b, std::uint32_t first, std::uint32_
 // first. Boxes are rounded outward to float. A leaf's entries keep their positions in b.order.
 // Each wide level consumes at least one binary level, so the wide tree is no deeper than b.
 template <int N, class T> std::vector<wide_node<N>> collapse(const bvh_t<T>& b) {
-  if (b.depth > bvh_max_depth)
-    throw error("wide BVH: the tree is " + std::to_string(b.depth) + " levels deep, the traversal stack holds " +
-                std::to_string(bvh_max_depth));
+  detail::check_depth(b);
   std::vector<wide_node<N>> out;
   if (b.empty()) return out;
   out.reserve(b.nodes.size() / (N - 1) + 1);
   if (b.nodes[0].leaf()) {  // a root leaf: one wide node with one child
-    auto& n = out.emplace_back(detail::empty_wide_node<N>());
-    for (int a = 0; a < 3; ++a) {
-      n.box[a][0] = float_down(b.nodes[0].box.lo[a]);
-      n.box[3 + a][0] = float_up(b.nodes[0].box.hi[a]);
-    }
-    n.child[0] = b.nodes[0].index;
-    n.count[0] = b.nodes[0].count;
+    detail::set_slot(out.emplace_back(detail::empty_wide_node<N>()), 0, b.nodes[0], b.nodes[0].index,
+                     b.nodes[0].count);
     return out;
   }
   detail::collapse_node<N>(b, 1, b.nodes[0].index, out);
@@ -424,18 +430,10 @@ template <int N, class T> class cost_collapse {
   }
   // Binary node n as slot k of wide node w.
   void put(std::uint32_t w, int k, std::uint32_t n) {
-    const bvh_node_t<T>& node = b_.nodes[n];
-    for (int a = 0; a < 3; ++a) {
-      out_[w].box[a][k] = float_down(node.box.lo[a]);
-      out_[w].box[3 + a][k] = float_up(node.box.hi[a]);
-    }
-    if (f_[n].leaf) {
-      out_[w].child[k] = f_[n].first;
-      out_[w].count[k] = f_[n].count;
-    } else {
-      const std::uint32_t child = emit(n);
-      out_[w].child[k] = child;
-      out_[w].count[k] = 0;
+    if (f_[n].leaf) set_slot(out_[w], k, b_.nodes[n], f_[n].first, f_[n].count);
+    else {
+      const std::uint32_t child = emit(n);  // grows out_: index w afresh after it
+      set_slot(out_[w], k, b_.nodes[n], child, 0);
     }
   }
   // Binary node n (inner) as a wide node: its children share the N slots.
@@ -457,9 +455,7 @@ template <int N, class T> class cost_collapse {
 }  // namespace detail
 template <int N, class T>
 std::vector<wide_node<N>> collapse_by_cost(const bvh_t<T>& b, const collapse_costs& c, double* cost = nullptr) {
-  if (b.depth > bvh_max_depth)
-    throw error("wide BVH: the tree is " + std::to_string(b.depth) + " levels deep, the traversal stack holds " +
-                std::to_string(bvh_max_depth));
+  detail::check_depth(b);
   if (c.max_leaf < 1 || c.max_leaf > 255)
     throw error("wide BVH: collapse costs: max_leaf must be in 1..255, got " + std::to_string(c.max_leaf));
   if (c.leaf_block < 1) throw error("wide BVH: collapse costs: leaf_block must be at least 1");
