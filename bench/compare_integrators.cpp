@@ -7,18 +7,18 @@
 // integrator (build/out/compare-<scene>-<integrator>.csv, for tools/plot_convergence.py).
 //   build/bin/compare_integrators [--scenes a,b,c] [--width W --height H] [--target RMSE]
 //                                 [--max-seconds S] [--ref-spp N] [--threads T] [--seed S]
-#include <zraka/bdpt.hpp>
-#include <zraka/cli.hpp>
-#include <zraka/convergence.hpp>
-#include <zraka/error.hpp>
-#include <zraka/metropolis.hpp>
-#include <zraka/path.hpp>
-#include <zraka/progressive.hpp>
-#include <zraka/program_options.hpp>
-#include <zraka/reference.hpp>
-#include <zraka/scene_argument.hpp>
-#include <zraka/sppm.hpp>
-#include <zraka/stopwatch.hpp>
+#include <zraka/integrators/bdpt.hpp>
+#include <zraka/app/cli.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/integrators/metropolis.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/progressive.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/app/reference.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/integrators/sppm.hpp>
+#include <zraka/core/stopwatch.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -3,13 +3,13 @@
 // uniformly, then by power. A reference (by power, many samples, its own seed) is rendered
 // first; uniform choice renders to --spp and its RMSE there is the target; choice by power
 // renders until it reaches that RMSE. The table gives both times and their ratio.
-#include <zraka/cli.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_error.hpp>
-#include <zraka/path.hpp>
-#include <zraka/progressive.hpp>
+#include <zraka/app/cli.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_error.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/progressive.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/app/cli.hpp>
 
 #include <cstdio>
 

@@ -7,15 +7,15 @@
 //     (interpolated between passes, progressive.hpp) and its speed-up over naive. Pixels are
 //     sampled at their centres here, so the error is the light transport's alone (with jitter,
 //     the edges of the directly seen light add the same noise to every integrator).
-#include <zraka/cli.hpp>
-#include <zraka/cornell.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/path.hpp>
-#include <zraka/progressive.hpp>
+#include <zraka/app/cli.hpp>
+#include <zraka/scene/cornell.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/progressive.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/app/cli.hpp>
 
 #include <cmath>
 #include <cstdio>

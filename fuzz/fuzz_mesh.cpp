@@ -4,7 +4,7 @@
 // bytes choose the reader: "glTF" a .glb, '{' a .gltf, anything else a .ply.
 #include "fuzz_common.hpp"
 
-#include <zraka/mesh_file.hpp>
+#include <zraka/io/mesh_file.hpp>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view head(reinterpret_cast<const char*>(data), size < 4 ? size : 4);

@@ -2,7 +2,7 @@
 #include "fuzz_common.hpp"
 
 // The reader under test (one place to change if it moves).
-#include <zraka/obj_file.hpp>
+#include <zraka/io/obj_file.hpp>
 #define ZRAKA_FUZZ_LOAD_OBJ zraka::load_obj
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

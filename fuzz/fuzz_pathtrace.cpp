@@ -15,21 +15,21 @@
 #include "fuzz_common.hpp"
 
 // Everything main.cpp includes, first, so that the macros below reach main.cpp's body only.
-#include <zraka/cli.hpp>
-#include <zraka/convergence.hpp>
-#include <zraka/cornell.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/lights.hpp>
-#include <zraka/path.hpp>
-#include <zraka/pixel_sampling.hpp>
-#include <zraka/preview_window.hpp>
-#include <zraka/program_options.hpp>
-#include <zraka/progressive.hpp>
-#include <zraka/samplers.hpp>
-#include <zraka/scene_argument.hpp>
-#include <zraka/scene_file.hpp>
+#include <zraka/app/cli.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/scene/cornell.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/scene/lights.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
+#include <zraka/app/preview_window.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/integrators/progressive.hpp>
+#include <zraka/sampling/samplers.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/io/scene_file.hpp>
 
 #include <algorithm>
 #include <cmath>

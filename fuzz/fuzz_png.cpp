@@ -2,7 +2,7 @@
 // compiled into this program and so instrumented with it).
 #include "fuzz_common.hpp"
 
-#include <zraka/testing.hpp>
+#include <zraka/app/testing.hpp>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::filesystem::path p = zraka_fuzz::input_file(data, size, "input.png");

@@ -3,8 +3,8 @@
 // Debian's yaml-cpp is not instrumented: coverage guides the search through our reader only.
 #include "fuzz_common.hpp"
 
-#include <zraka/resources.hpp>
-#include <zraka/scene_file.hpp>
+#include <zraka/core/resources.hpp>
+#include <zraka/io/scene_file.hpp>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -5,30 +5,30 @@
 #error "build src/compiled.cpp through the zraka_compiled target (it defines ZRAKA_COMPILED)"
 #endif
 #define ZRAKA_COMPILING
-#include <zraka/atomic_file.hpp>
-#include <zraka/cli.hpp>
-#include <zraka/convergence.hpp>
-#include <zraka/default_scene.hpp>
-#include <zraka/image.hpp>
-#include <zraka/image_error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/input_file.hpp>
-#include <zraka/limits.hpp>
-#include <zraka/mitsuba_export.hpp>
-#include <zraka/named_scenes.hpp>
-#include <zraka/obj_file.hpp>
-#include <zraka/program_options.hpp>
-#include <zraka/progressive.hpp>
-#include <zraka/render.hpp>
-#include <zraka/scene_registry.hpp>
-#include <zraka/triangle_bvh.hpp>
+#include <zraka/core/atomic_file.hpp>
+#include <zraka/app/cli.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/scene/default_scene.hpp>
+#include <zraka/image/image.hpp>
+#include <zraka/image/image_error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/core/input_file.hpp>
+#include <zraka/core/limits.hpp>
+#include <zraka/io/mitsuba_export.hpp>
+#include <zraka/scene/named_scenes.hpp>
+#include <zraka/io/obj_file.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/integrators/progressive.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/scene/scene_registry.hpp>
+#include <zraka/accel/triangle_bvh.hpp>
 #if defined(ZRAKA_COMPILED_MESH_FILE)  // built with assimp
-#include <zraka/mesh_file.hpp>
+#include <zraka/io/mesh_file.hpp>
 #endif
 #if defined(ZRAKA_COMPILED_SCENE_FILE)  // built with yaml-cpp
-#include <zraka/scene_argument.hpp>
-#include <zraka/scene_file.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/io/scene_file.hpp>
 #endif
 #if defined(ZRAKA_COMPILED_MITSUBA_XML)  // and pugixml
-#include <zraka/mitsuba_xml.hpp>
+#include <zraka/io/mitsuba_xml.hpp>
 #endif

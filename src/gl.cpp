@@ -5,4 +5,4 @@
 #error "build src/gl.cpp through the zraka_compiled target, with GLFW and libepoxy"
 #endif
 #define ZRAKA_COMPILING_GL  // this header's definitions only
-#include <zraka/gl.hpp>
+#include <zraka/gpu/gl.hpp>

@@ -6,5 +6,5 @@
 #error "build src/opencl.cpp through the zraka_compiled target, with OpenCL"
 #endif
 #define ZRAKA_COMPILING_OPENCL  // these headers' definitions only: the rest are in compiled.cpp
-#include <zraka/cl.hpp>
-#include <zraka/realtime.hpp>
+#include <zraka/gpu/cl.hpp>
+#include <zraka/gpu/realtime.hpp>

@@ -5,4 +5,4 @@
 #error "build src/preview_window.cpp through the zraka_compiled target, with GLFW and libepoxy"
 #endif
 #define ZRAKA_COMPILING_PREVIEW  // this header's definitions only: the rest are in compiled.cpp
-#include <zraka/preview_window.hpp>
+#include <zraka/app/preview_window.hpp>

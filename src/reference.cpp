@@ -5,4 +5,4 @@
 #error "build src/reference.cpp through the zraka_compiled target, with yaml-cpp"
 #endif
 #define ZRAKA_COMPILING_REFERENCE
-#include <zraka/reference.hpp>
+#include <zraka/app/reference.hpp>

@@ -2,7 +2,7 @@
 // Shared by the tests of the readers (scene files, OBJ, Mitsuba XML): the message of the
 // zraka::error a call throws, and the check that each malformed file of a folder gives the
 // error its first line expects.
-#include <zraka/error.hpp>
+#include <zraka/core/error.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,6 +1,6 @@
 // Tests for affine.hpp (book 1.0, Def 1.0.1-1.0.3): linear vs affine maps, and normals.
-#include <zraka/affine.hpp>
-#include <zraka/rng.hpp>
+#include <zraka/core/affine.hpp>
+#include <zraka/core/rng.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,6 +1,6 @@
 // Tests for atomic_file.hpp: whole file or nothing, and no temporary left behind (on errors,
 // SIGINT, SIGTERM; after SIGKILL the next write removes it); names that cannot be outputs.
-#include <zraka/atomic_file.hpp>
+#include <zraka/core/atomic_file.hpp>
 
 #include <doctest/doctest.h>
 

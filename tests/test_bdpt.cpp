@@ -3,11 +3,11 @@
 // each with its own seed) on the Cornell boxes, the caustic box and a point-lit box; each
 // strategy alone, unweighted, converging to the same image of paths of one length; the
 // strategies' weighted images summing to the image; the same bits for 1 and 2 threads.
-#include <zraka/bdpt.hpp>
-#include <zraka/cornell.hpp>
-#include <zraka/estimator.hpp>
-#include <zraka/path.hpp>
-#include <zraka/render.hpp>
+#include <zraka/integrators/bdpt.hpp>
+#include <zraka/scene/cornell.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/render.hpp>
 
 #include <doctest/doctest.h>
 

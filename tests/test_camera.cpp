@@ -1,5 +1,5 @@
 // Tests for camera.hpp: where primary rays go, and the thin lens.
-#include <zraka/camera.hpp>
+#include <zraka/cameras/camera.hpp>
 
 #include <doctest/doctest.h>
 

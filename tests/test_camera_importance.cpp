@@ -1,10 +1,10 @@
 // The pinhole camera's importance (camera_importance.hpp, book 6.2): We and the camera ray's
 // direction density integrate to one over the sphere, and a point projects back to the image
 // position whose camera ray passes through it.
-#include <zraka/camera_importance.hpp>
-#include <zraka/estimator.hpp>
-#include <zraka/rng.hpp>
-#include <zraka/sampling.hpp>
+#include <zraka/cameras/camera_importance.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/sampling/sampling.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,6 +1,6 @@
-#include <zraka/cornell.hpp>
-#include <zraka/lights.hpp>
-#include <zraka/scene_query.hpp>
+#include <zraka/scene/cornell.hpp>
+#include <zraka/scene/lights.hpp>
+#include <zraka/scene/scene_query.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,9 +1,9 @@
 // Tests for distribution.hpp: the 1D and 2D piecewise-constant distributions sample their own
 // pdf (chi-square), the pdf integrates to one, bins of weight zero are never sampled, and the
 // last bin is safe in float.
-#include <zraka/chi_square.hpp>
-#include <zraka/distribution.hpp>
-#include <zraka/rng.hpp>
+#include <zraka/app/chi_square.hpp>
+#include <zraka/sampling/distribution.hpp>
+#include <zraka/core/rng.hpp>
 
 #include <doctest/doctest.h>
 

@@ -2,10 +2,10 @@
 // directions they leave in. Position densities against the area closed forms, the direction
 // sampler by chi-square, and the emitted power the samples estimate against the power the light
 // set chooses lights by.
-#include <zraka/chi_square.hpp>
-#include <zraka/estimator.hpp>
-#include <zraka/lights.hpp>
-#include <zraka/tessellate.hpp>
+#include <zraka/app/chi_square.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/scene/lights.hpp>
+#include <zraka/geometry/tessellate.hpp>
 
 #include <doctest/doctest.h>
 

@@ -3,12 +3,12 @@
 // pdf (chi-square), the pdf integrates to one over the sphere, lookups hit texel centres, bad
 // maps are refused by name; a Lambertian ball under a constant sky has radiance rho L (furnace)
 // with every method; naive, nee and mis agree under a non-uniform map; nee finds a tiny sun.
-#include <zraka/chi_square.hpp>
-#include <zraka/environment_file.hpp>
-#include <zraka/gpu_scene.hpp>
-#include <zraka/path.hpp>
-#include <zraka/scene_file.hpp>
-#include <zraka/whitted.hpp>
+#include <zraka/app/chi_square.hpp>
+#include <zraka/lights/environment_file.hpp>
+#include <zraka/gpu/gpu_scene.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/io/scene_file.hpp>
+#include <zraka/integrators/whitted.hpp>
 
 #include <doctest/doctest.h>
 #if !ZRAKA_COMPILED_DEFINITIONS  // else image_io.hpp has stb_image_write, for writing .hdr files too

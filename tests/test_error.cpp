@@ -1,5 +1,5 @@
 // Tests for error.hpp: guarded() turns exceptions into "error: ..." and exit code 1.
-#include <zraka/error.hpp>
+#include <zraka/core/error.hpp>
 
 #include <doctest/doctest.h>
 

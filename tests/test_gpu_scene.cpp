@@ -1,10 +1,10 @@
 // gpu_scene.hpp: a scene packed into the flat arrays the real-time kernel reads, the features it
 // uses and the -D switches made from them, and the CPU twin of one kernel sample. No OpenCL
 // here (tests/test_realtime.cpp runs the kernel).
-#include <zraka/cornell.hpp>
-#include <zraka/gpu_scene.hpp>
-#include <zraka/medium.hpp>
-#include <zraka/realtime.hpp>
+#include <zraka/scene/cornell.hpp>
+#include <zraka/gpu/gpu_scene.hpp>
+#include <zraka/media/medium.hpp>
+#include <zraka/gpu/realtime.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,5 +1,5 @@
 // Tests for hit.hpp: the hit record's defaults and face orientation.
-#include <zraka/hit.hpp>
+#include <zraka/core/hit.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,5 +1,5 @@
 // Tests for image.hpp: sizes, pixel layout, non-finite pixel count.
-#include <zraka/image.hpp>
+#include <zraka/image/image.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,4 +1,4 @@
-#include <zraka/image_error.hpp>
+#include <zraka/image/image_error.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,6 +1,6 @@
 // Tests for image_io.hpp: PNG/PPM as sRGB bytes, PFM as exact floats, NaN handling, atomic
 // writes and clear errors. PNGs are decoded again with stb_image to check what was written.
-#include <zraka/image_io.hpp>
+#include <zraka/image/image_io.hpp>
 
 #define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION

@@ -1,5 +1,5 @@
-#include <zraka/lights.hpp>
-#include <zraka/scene_query.hpp>
+#include <zraka/scene/lights.hpp>
+#include <zraka/scene/scene_query.hpp>
 
 #include <doctest/doctest.h>
 

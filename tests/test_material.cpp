@@ -1,4 +1,4 @@
-#include <zraka/material.hpp>
+#include <zraka/materials/material.hpp>
 
 #include <doctest/doctest.h>
 

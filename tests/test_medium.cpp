@@ -1,5 +1,5 @@
-#include <zraka/medium.hpp>
-#include <zraka/estimator.hpp>
+#include <zraka/media/medium.hpp>
+#include <zraka/sampling/estimator.hpp>
 
 #include <doctest/doctest.h>
 

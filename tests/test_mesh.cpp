@@ -1,5 +1,5 @@
 // The indexed triangle mesh: bounds, nearest hit, shading vs geometric normal.
-#include <zraka/mesh.hpp>
+#include <zraka/geometry/mesh.hpp>
 
 #include <doctest/doctest.h>
 

@@ -6,15 +6,15 @@
 // furnace (F = 1 loses exactly the single-scattering energy, against a quadrature); the glass's
 // albedo; no NaN at the extremes in float and double; the conductor Fresnel; scene files; the
 // renderers that cannot shade them refuse them by name.
-#include <zraka/chi_square.hpp>
-#include <zraka/gpu_scene.hpp>
-#include <zraka/material.hpp>
-#include <zraka/microfacet.hpp>
-#include <zraka/onb.hpp>
-#include <zraka/path.hpp>
-#include <zraka/rng.hpp>
-#include <zraka/scene_file.hpp>
-#include <zraka/whitted.hpp>
+#include <zraka/app/chi_square.hpp>
+#include <zraka/gpu/gpu_scene.hpp>
+#include <zraka/materials/material.hpp>
+#include <zraka/materials/microfacet.hpp>
+#include <zraka/core/onb.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/io/scene_file.hpp>
+#include <zraka/integrators/whitted.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,4 +1,4 @@
-#include <zraka/mitsuba_export.hpp>
+#include <zraka/io/mitsuba_export.hpp>
 
 #include <doctest/doctest.h>
 

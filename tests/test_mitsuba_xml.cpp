@@ -4,8 +4,8 @@
 // of scenes/mitsuba/ is the Cornell box of scenes/cornell.yaml, quad for quad; the sensor's
 // conventions (fov_axis, lookat and matrix, max_depth); a mesh's to_world through zraka's
 // scale-rotate-translate, half turns included; defaults and $name; limits and deep nesting.
-#include <zraka/mitsuba_xml.hpp>
-#include <zraka/scene_argument.hpp>
+#include <zraka/io/mitsuba_xml.hpp>
+#include <zraka/io/scene_argument.hpp>
 
 #include "expected_errors.hpp"
 

@@ -1,4 +1,4 @@
-#include <zraka/named_scenes.hpp>
+#include <zraka/scene/named_scenes.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,7 +1,7 @@
 // Tests for onb.hpp: the basis is orthonormal and right-handed for every unit normal, including
 // the directions where the usual cross(n, fixed axis) recipe breaks down.
-#include <zraka/onb.hpp>
-#include <zraka/rng.hpp>
+#include <zraka/core/onb.hpp>
+#include <zraka/core/rng.hpp>
 
 #include <doctest/doctest.h>
 

@@ -6,11 +6,11 @@
 
 #include <iomanip>
 #include <sstream>
-#include <zraka/chi_square.hpp>
-#include <zraka/hit.hpp>
-#include <zraka/optics.hpp>
-#include <zraka/rng.hpp>
-#include <zraka/sampling.hpp>
+#include <zraka/app/chi_square.hpp>
+#include <zraka/core/hit.hpp>
+#include <zraka/materials/optics.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/sampling/sampling.hpp>
 
 using namespace zraka;
 

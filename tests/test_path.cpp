@@ -1,6 +1,6 @@
-#include <zraka/cornell.hpp>
-#include <zraka/path.hpp>
-#include <zraka/render.hpp>
+#include <zraka/scene/cornell.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/render.hpp>
 
 #include <doctest/doctest.h>
 

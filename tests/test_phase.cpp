@@ -1,6 +1,6 @@
-#include <zraka/chi_square.hpp>
-#include <zraka/phase.hpp>
-#include <zraka/rng.hpp>
+#include <zraka/app/chi_square.hpp>
+#include <zraka/media/phase.hpp>
+#include <zraka/core/rng.hpp>
 
 #include <doctest/doctest.h>
 

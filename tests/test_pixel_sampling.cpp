@@ -1,4 +1,4 @@
-#include <zraka/pixel_sampling.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
 
 #include <doctest/doctest.h>
 

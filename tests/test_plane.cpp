@@ -5,9 +5,9 @@
 #include <cmath>
 #include <sstream>
 #include <string>
-#include <zraka/plane.hpp>
-#include <zraka/rng.hpp>
-#include <zraka/spawn.hpp>
+#include <zraka/geometry/plane.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/geometry/spawn.hpp>
 
 using namespace zraka;
 

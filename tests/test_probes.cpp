@@ -4,8 +4,8 @@
 // sphere. The renderers: the path tracer's naive, nee and mis (path.hpp, the loop pathtrace and
 // the book show) and Whitted's direct light (whitted.hpp). Each estimate must lie within 5
 // standard errors (and 1 %) of the closed form; an emitter seen from its back gives exactly 0.
-#include <zraka/path.hpp>
-#include <zraka/whitted.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/whitted.hpp>
 
 #include <doctest/doctest.h>
 

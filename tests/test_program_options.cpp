@@ -1,4 +1,4 @@
-#include <zraka/program_options.hpp>
+#include <zraka/app/program_options.hpp>
 
 #include <doctest/doctest.h>
 

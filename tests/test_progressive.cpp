@@ -1,4 +1,4 @@
-#include <zraka/progressive.hpp>
+#include <zraka/integrators/progressive.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,5 +1,5 @@
-#include <zraka/quad.hpp>
-#include <zraka/rng.hpp>
+#include <zraka/geometry/quad.hpp>
+#include <zraka/core/rng.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,5 +1,5 @@
 // Tests for ray.hpp: R(t) = O + tD with a unit direction (book 1.1, thesis Remark 1.1.3, B1).
-#include <zraka/ray.hpp>
+#include <zraka/core/ray.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,4 +1,4 @@
-#include <zraka/render.hpp>
+#include <zraka/integrators/render.hpp>
 
 #include <doctest/doctest.h>
 

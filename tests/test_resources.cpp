@@ -1,5 +1,5 @@
 // Tests for resources.hpp: one compiled-in root, overridable with ZRAKA_ROOT.
-#include <zraka/resources.hpp>
+#include <zraka/core/resources.hpp>
 
 #include <doctest/doctest.h>
 

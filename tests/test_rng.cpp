@@ -1,7 +1,7 @@
 // rng.hpp: reproducible streams keyed by (seed, pixel, sample), uniform output, and no
 // correlation between neighbouring pixels (the thesis's OpenCL pattern noise, C7, came from
 // per-pixel seeds that were raw pixel coordinates).
-#include <zraka/rng.hpp>
+#include <zraka/core/rng.hpp>
 
 #include <doctest/doctest.h>
 

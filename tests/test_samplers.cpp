@@ -1,8 +1,8 @@
-#include <zraka/chi_square.hpp>
-#include <zraka/cornell.hpp>
-#include <zraka/path.hpp>
-#include <zraka/render.hpp>
-#include <zraka/samplers.hpp>
+#include <zraka/app/chi_square.hpp>
+#include <zraka/scene/cornell.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/sampling/samplers.hpp>
 
 #include <doctest/doctest.h>
 

@@ -4,9 +4,9 @@
 
 #include <sstream>
 #include <string>
-#include <zraka/chi_square.hpp>
-#include <zraka/rng.hpp>
-#include <zraka/sampling.hpp>
+#include <zraka/app/chi_square.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/sampling/sampling.hpp>
 
 using namespace zraka;
 

@@ -1,5 +1,5 @@
 // links: yaml-cpp
-#include <zraka/scene_argument.hpp>
+#include <zraka/io/scene_argument.hpp>
 
 #include <doctest/doctest.h>
 

@@ -3,9 +3,9 @@
 // column, field); defaults; every key honoured; transforms; mirrored meshes; files found
 // relative to the scene, then the resource root; the object BVH and mesh BVHs give the same
 // nearest hit as testing everything; rays spawned from a mesh hit never hit it again.
-#include <zraka/scene_file.hpp>
-#include <zraka/scene_query.hpp>
-#include <zraka/lights.hpp>
+#include <zraka/io/scene_file.hpp>
+#include <zraka/scene/scene_query.hpp>
+#include <zraka/scene/lights.hpp>
 
 #include <doctest/doctest.h>
 

@@ -7,12 +7,12 @@
 // place, shadowing a built-in name); Whitted and the realtime packer refuse them by name.
 #include "../book/assignments/external/register.hpp"
 
-#include <zraka/estimator.hpp>
-#include <zraka/gpu_scene.hpp>
-#include <zraka/path.hpp>
-#include <zraka/scene_file.hpp>
-#include <zraka/testing.hpp>
-#include <zraka/whitted.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/gpu/gpu_scene.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/io/scene_file.hpp>
+#include <zraka/app/testing.hpp>
+#include <zraka/integrators/whitted.hpp>
 
 #include <doctest/doctest.h>
 

@@ -3,12 +3,12 @@
 // loads, and the path tracer and BDPT render it with no NaN/inf sample; smallpt's walls, spheres
 // of radius 1e5, give the same image in float as in double (region means within 5 standard
 // errors of independent batches) and not a black one.
-#include <zraka/bdpt.hpp>
-#include <zraka/estimator.hpp>
-#include <zraka/path.hpp>
-#include <zraka/render.hpp>
-#include <zraka/scene_argument.hpp>
-#include <zraka/scene_precision.hpp>
+#include <zraka/integrators/bdpt.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/scene/scene_precision.hpp>
 
 #include <doctest/doctest.h>
 

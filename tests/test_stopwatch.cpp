@@ -1,5 +1,5 @@
 // Tests for stopwatch.hpp.
-#include <zraka/stopwatch.hpp>
+#include <zraka/core/stopwatch.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,9 +1,9 @@
 // Tests for testing.hpp: every check accepts a correct case and rejects a broken one (a wrong
 // pdf, a biased mean, a shifted image, a wrong derivative or normal, a shape that re-hits
 // itself), and its message names the measured numbers.
-#include <zraka/testing.hpp>
-#include <zraka/sampling.hpp>
-#include <zraka/sphere.hpp>
+#include <zraka/app/testing.hpp>
+#include <zraka/sampling/sampling.hpp>
+#include <zraka/geometry/sphere.hpp>
 
 #include <doctest/doctest.h>
 

@@ -2,11 +2,11 @@
 // Textures: the checker's cells; the image lookup's bilinear weights, wrap modes and sRGB
 // decoding; noise's range, lattice zeros, continuity and determinism; OBJ texture coordinates
 // reaching a hit; textures in scene files and their errors.
-#include <zraka/obj_file.hpp>
-#include <zraka/scene_file.hpp>
-#include <zraka/scene_query.hpp>
-#include <zraka/texture.hpp>
-#include <zraka/texture_file.hpp>
+#include <zraka/io/obj_file.hpp>
+#include <zraka/io/scene_file.hpp>
+#include <zraka/scene/scene_query.hpp>
+#include <zraka/textures/texture.hpp>
+#include <zraka/textures/texture_file.hpp>
 
 #include <doctest/doctest.h>
 

@@ -11,10 +11,10 @@
 #include <string>
 #include <tuple>
 #include <vector>
-#include <zraka/rng.hpp>
-#include <zraka/spawn.hpp>
-#include <zraka/simd.hpp>
-#include <zraka/triangle.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/geometry/spawn.hpp>
+#include <zraka/accel/simd.hpp>
+#include <zraka/geometry/triangle.hpp>
 
 using namespace zraka;
 

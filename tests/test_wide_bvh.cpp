@@ -4,14 +4,14 @@
 // hit, in float and double, on random rays, grazing rays along box faces, rays from inside boxes,
 // flat boxes, rays with zero, tiny, infinite and NaN direction components; the scene's object
 // BVH over every kind of object; the depth limit; no allocation per ray.
-#include <zraka/bvh.hpp>
-#include <zraka/rng.hpp>
-#include <zraka/scene.hpp>
-#include <zraka/scene_query.hpp>
-#include <zraka/sphere.hpp>
-#include <zraka/triangle.hpp>
-#include <zraka/user_shape.hpp>
-#include <zraka/wide_bvh.hpp>
+#include <zraka/accel/bvh.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/scene/scene.hpp>
+#include <zraka/scene/scene_query.hpp>
+#include <zraka/geometry/sphere.hpp>
+#include <zraka/geometry/triangle.hpp>
+#include <zraka/geometry/user_shape.hpp>
+#include <zraka/accel/wide_bvh.hpp>
 
 #include <doctest/doctest.h>
 

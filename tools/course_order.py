@@ -14,7 +14,7 @@ import re
 import sys
 from pathlib import Path
 
-INCLUDE = re.compile(r'^\s*#\s*include\s*<zraka/([A-Za-z0-9_]+\.hpp)>', re.M)
+INCLUDE = re.compile(r'^\s*#\s*include\s*<zraka/([A-Za-z0-9_/]+\.hpp)>', re.M)
 COMMENT = re.compile(r'//[^\n]*|/\*.*?\*/', re.S)
 STRING = re.compile(r'"(?:\\.|[^"\\\n])*"')
 
@@ -28,20 +28,20 @@ def self_test():
     import tempfile
     with tempfile.TemporaryDirectory() as t:
         r = Path(t)
-        (r / 'include' / 'zraka').mkdir(parents=True)
-        for h in ('scene_file.hpp', 'vec.hpp'):
+        for h in ('io/scene_file.hpp', 'core/vec.hpp'):
+            (r / 'include' / 'zraka' / h).parent.mkdir(parents=True, exist_ok=True)
             (r / 'include' / 'zraka' / h).write_text('')
         (r / 'book').mkdir()
-        (r / 'book' / 'course_order.txt').write_text('header scene_file.hpp 4.1\nfunction parse_scene 4.1\n')
+        (r / 'book' / 'course_order.txt').write_text('header io/scene_file.hpp 4.1\nfunction parse_scene 4.1\n')
         def chapter(name, text):
             (r / 'chapters' / name).mkdir(parents=True)
             (r / 'chapters' / name / 'main.cpp').write_text(text)
-        chapter('1.0-a', '#include <zraka/vec.hpp>\n#include <zraka/scene_file.hpp>\n')
+        chapter('1.0-a', '#include <zraka/core/vec.hpp>\n#include <zraka/io/scene_file.hpp>\n')
         chapter('2.0-b', 'int f() { return parse_scene (1); }\n')
         chapter('3.0-c', '// parse_scene(x) is taught later\nconst char* s = "parse_scene(";\n')
-        chapter('4.1-d', '#include <zraka/scene_file.hpp>\nint g() { return parse_scene(2); }\n')
+        chapter('4.1-d', '#include <zraka/io/scene_file.hpp>\nint g() { return parse_scene(2); }\n')
         out = subprocess.run([sys.executable, __file__, '--root', str(r)], capture_output=True, text=True)
-        want = ['chapters/1.0-a includes <zraka/scene_file.hpp>, which page 4.1 teaches',
+        want = ['chapters/1.0-a includes <zraka/io/scene_file.hpp>, which page 4.1 teaches',
                 'chapters/2.0-b calls parse_scene(), which page 4.1 teaches', '2 problem(s)']
         bad = [w for w in want if w not in out.stdout] + (['3.0-c or 4.1-d flagged'] if '3.0-c' in out.stdout or '4.1-d' in out.stdout else [])
         if out.returncode != 1 or bad:
@@ -66,7 +66,7 @@ def main():
         if not line:
             continue
         if len(line) != 3 or line[0] not in ('header', 'function') or not re.fullmatch(r'\d+\.\d+', line[2]):
-            problems.append(f'book/course_order.txt:{n}: expected "header NAME.hpp PAGE" or "function NAME PAGE"')
+            problems.append(f'book/course_order.txt:{n}: expected "header FOLDER/NAME.hpp PAGE" or "function NAME PAGE"')
             continue
         (headers if line[0] == 'header' else functions)[line[1]] = line[2]
     for h in headers:

@@ -3,11 +3,11 @@
 // whether that program is built yet, and its book page. Nothing is listed by hand: the chapter
 // folders are read from the resource root (ZRAKA_ROOT, or the source tree compiled in) or, when
 // that has none, from the folder this file was compiled from.
-#include <zraka/error.hpp>
-#include <zraka/resources.hpp>
-#include <zraka/stopwatch.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/core/resources.hpp>
+#include <zraka/core/stopwatch.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/app/cli.hpp>
 
 #include <algorithm>
 #include <charconv>

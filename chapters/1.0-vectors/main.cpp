@@ -2,14 +2,14 @@
 // page 1.0: a matrix map is linear, a translation is affine but not linear, dot/norm/cross and
 // ||a x b|| = ||a|| ||b|| sin(theta) = the parallelogram's area, an orthonormal basis built from
 // a normal, and why normals are transformed by the inverse transpose.
-#include <zraka/affine.hpp>
-#include <zraka/error.hpp>
-#include <zraka/onb.hpp>
-#include <zraka/rng.hpp>
-#include <zraka/stopwatch.hpp>
-#include <zraka/vec.hpp>
+#include <zraka/core/affine.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/core/onb.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/core/stopwatch.hpp>
+#include <zraka/core/vec.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/app/cli.hpp>
 
 #include <cstdio>
 #include <string>

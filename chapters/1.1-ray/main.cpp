@@ -2,12 +2,12 @@
 // stored direction has unit length even for badly scaled inputs (where the naive v / ||v||
 // overflows or underflows), and what a zero or NaN direction becomes: an invalid ray that
 // nothing ever hits.
-#include <zraka/error.hpp>
-#include <zraka/ray.hpp>
-#include <zraka/sphere.hpp>
-#include <zraka/stopwatch.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/core/ray.hpp>
+#include <zraka/geometry/sphere.hpp>
+#include <zraka/core/stopwatch.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/app/cli.hpp>
 
 #include <cstdio>
 #include <limits>

@@ -3,13 +3,13 @@
 // Writes the image (--out: .ppm is the thesis's text pixel matrix, or .png), checks every hit point
 // lies on the sphere, and compares the fraction of pixels hit with the fraction the sphere's
 // projected disc covers, computed in closed form.
-#include <zraka/camera.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/sphere.hpp>
-#include <zraka/stopwatch.hpp>
+#include <zraka/cameras/camera.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/geometry/sphere.hpp>
+#include <zraka/core/stopwatch.hpp>
 
-#include <zraka/program_options.hpp>
+#include <zraka/app/program_options.hpp>
 
 #include <cstdio>
 

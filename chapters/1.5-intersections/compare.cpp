@@ -3,8 +3,8 @@
 // meshes (cracks).
 #include "compare.hpp"
 
-#include <zraka/rng.hpp>
-#include <zraka/stopwatch.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/core/stopwatch.hpp>
 
 #include <algorithm>
 #include <array>

@@ -2,7 +2,7 @@
 // Chapter 1.5's second half (compare.cpp): the three triangle methods of triangle.hpp on random
 // rays and on the shared edges of two meshes. A unit of its own, so that editing the render in
 // main.cpp does not compile the comparison again.
-#include <zraka/triangle.hpp>
+#include <zraka/geometry/triangle.hpp>
 
 #include <array>
 #include <cstdint>

@@ -3,15 +3,15 @@
 // the thesis's section 2.1 "shader"), then compares the three triangle methods of triangle.hpp
 // on random rays: how often they agree, how many rays slip through the shared edges and vertices
 // of a triangle fan and a grid ("cracks"), and how long one test takes (compare.cpp).
-#include <zraka/camera.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/plane.hpp>
-#include <zraka/sphere.hpp>
-#include <zraka/stopwatch.hpp>
-#include <zraka/triangle.hpp>
+#include <zraka/cameras/camera.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/geometry/plane.hpp>
+#include <zraka/geometry/sphere.hpp>
+#include <zraka/core/stopwatch.hpp>
+#include <zraka/geometry/triangle.hpp>
 
-#include <zraka/program_options.hpp>
+#include <zraka/app/program_options.hpp>
 
 #include "compare.hpp"
 

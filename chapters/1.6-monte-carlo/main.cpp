@@ -9,14 +9,14 @@
 // For every estimator: a table of N = 2^k, seconds, estimate, |error|, standard error, the
 // fitted slope of log(error) against log(N) (expect -1/2), and a CSV file for
 // tools/plot_convergence.py.
-#include <zraka/convergence.hpp>
-#include <zraka/error.hpp>
-#include <zraka/estimator.hpp>
-#include <zraka/rng.hpp>
-#include <zraka/stopwatch.hpp>
-#include <zraka/vec.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/core/stopwatch.hpp>
+#include <zraka/core/vec.hpp>
 
-#include <zraka/program_options.hpp>
+#include <zraka/app/program_options.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -8,14 +8,14 @@
 // Lambertian ball gives the same number twice (within its statistical error); the fuzzy balls
 // do not, for any fuzz: a larger offset blurs the reflection but stays centred on the mirror
 // direction.
-#include <zraka/error.hpp>
-#include <zraka/estimator.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/path.hpp>
-#include <zraka/pixel_sampling.hpp>
-#include <zraka/render.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
+#include <zraka/integrators/render.hpp>
 
-#include <zraka/program_options.hpp>
+#include <zraka/app/program_options.hpp>
 
 #include <cstdio>
 

@@ -4,14 +4,14 @@
 // air, where beyond the critical angle asin(1/1.5) = 41.8 degrees there is no refracted ray
 // (total internal reflection) and R = 1. Then a path-traced glass ball on a checkered floor,
 // where each hit on the glass reflects with probability R and refracts otherwise.
-#include <zraka/error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/optics.hpp>
-#include <zraka/path.hpp>
-#include <zraka/pixel_sampling.hpp>
-#include <zraka/render.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/materials/optics.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
+#include <zraka/integrators/render.hpp>
 
-#include <zraka/program_options.hpp>
+#include <zraka/app/program_options.hpp>
 
 #include <cstdio>
 

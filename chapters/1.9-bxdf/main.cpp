@@ -10,16 +10,16 @@
 //    less at grazing angles; the unnormalised lobe cos^p, which is what the local model's
 //    (V.R)^p amounts to, is 2 pi/(p+2) at normal incidence: above 1 for p < 4.3, far below for
 //    shiny surfaces.
-#include <zraka/bxdf.hpp>
-#include <zraka/error.hpp>
-#include <zraka/estimator.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/pixel_sampling.hpp>
-#include <zraka/render.hpp>
-#include <zraka/scene.hpp>
-#include <zraka/scene_query.hpp>
+#include <zraka/materials/bxdf.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/scene/scene.hpp>
+#include <zraka/scene/scene_query.hpp>
 
-#include <zraka/program_options.hpp>
+#include <zraka/app/program_options.hpp>
 
 #include <cstdio>
 

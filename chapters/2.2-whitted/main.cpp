@@ -7,12 +7,12 @@
 //   whitted --scene box --out box.png --spp 4
 //
 // The image is the same for the same seed on any number of threads.
-#include <zraka/error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/program_options.hpp>
-#include <zraka/render.hpp>
-#include <zraka/scene_argument.hpp>
-#include <zraka/whitted.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/integrators/whitted.hpp>
 
 #include <cstdio>
 

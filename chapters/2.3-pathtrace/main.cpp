@@ -13,18 +13,18 @@
 // cornell-glass, cornell-spheres; scenes/cornell*.yaml hold the same) and `furnace`, a camera
 // inside a glowing Lambertian sphere whose radiance has a closed form, checked here; or a
 // scene file (scenes/README.md).
-#include <zraka/convergence.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/mitsuba_export.hpp>
-#include <zraka/path.hpp>
-#include <zraka/pixel_sampling.hpp>
-#include <zraka/preview_window.hpp>
-#include <zraka/program_options.hpp>
-#include <zraka/progressive.hpp>
-#include <zraka/samplers.hpp>
-#include <zraka/scene_argument.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/io/mitsuba_export.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
+#include <zraka/app/preview_window.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/integrators/progressive.hpp>
+#include <zraka/sampling/samplers.hpp>
+#include <zraka/io/scene_argument.hpp>
 
 #include <cmath>
 #include <cstdio>

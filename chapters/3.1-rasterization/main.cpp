@@ -7,13 +7,13 @@
 // function exact. The program counts the pixels where the two images differ and checks that
 // each such pixel has its centre exactly on a triangle edge, where the two methods use
 // different tie rules, then prints both times.
-#include <zraka/error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/rng.hpp>
-#include <zraka/stopwatch.hpp>
-#include <zraka/triangle.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/core/stopwatch.hpp>
+#include <zraka/geometry/triangle.hpp>
 
-#include <zraka/program_options.hpp>
+#include <zraka/app/program_options.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -10,16 +10,16 @@
 // Every pixel is sampled at its centre (no anti-aliasing): the error against the reference is
 // then the light transport's alone. With jittered pixels the edges of the directly seen light
 // (radiance 17 next to 0.5) would add a noise no integrator can remove, the same for all three.
-#include <zraka/program_options.hpp>
-#include <zraka/convergence.hpp>
-#include <zraka/cornell.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/path.hpp>
-#include <zraka/progressive.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/scene/cornell.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/progressive.hpp>
 
-#include <zraka/cli.hpp>
+#include <zraka/app/cli.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -12,16 +12,16 @@
 // first frame.
 // The program prints the device, the kernel options, size, spp, depth and time together
 // (errata C12), and in window mode the viewer's frame rate next to the kernel's alone.
-#include <zraka/cl.hpp>
-#include <zraka/error.hpp>
-#include <zraka/gl.hpp>
-#include <zraka/gpu_scene.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/program_options.hpp>
-#include <zraka/realtime.hpp>
-#include <zraka/scene_argument.hpp>
-#include <zraka/scene_query.hpp>
-#include <zraka/stopwatch.hpp>
+#include <zraka/gpu/cl.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/gpu/gl.hpp>
+#include <zraka/gpu/gpu_scene.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/gpu/realtime.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/scene/scene_query.hpp>
+#include <zraka/core/stopwatch.hpp>
 
 #include <algorithm>
 #include <cmath>

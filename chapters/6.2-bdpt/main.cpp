@@ -11,19 +11,19 @@
 // (row k = path length, column s = light vertices), so a student sees which strategy carries
 // which light.
 // --window shows bdpt | mis after each doubling of the samples (preview_window.hpp).
-#include <zraka/bdpt.hpp>
-#include <zraka/convergence.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/input_file.hpp>
-#include <zraka/path.hpp>
-#include <zraka/preview_window.hpp>
-#include <zraka/program_options.hpp>
-#include <zraka/reference.hpp>
-#include <zraka/render.hpp>
-#include <zraka/scene_argument.hpp>
-#include <zraka/scene_query.hpp>
+#include <zraka/integrators/bdpt.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/core/input_file.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/app/preview_window.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/app/reference.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/scene/scene_query.hpp>
 
 #include <cmath>
 #include <cstdio>

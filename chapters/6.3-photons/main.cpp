@@ -10,21 +10,21 @@
 //   3. two-pass photon mapping (photon_mapping.hpp: global and caustic maps, final gathering)
 //      with a fixed radius: its error stops falling when its bias is reached.
 // --window shows the SPPM estimate of part 1 after every doubling of its passes (preview_window.hpp).
-#include <zraka/cornell.hpp>
-#include <zraka/convergence.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/path.hpp>
-#include <zraka/photon_mapping.hpp>
-#include <zraka/preview_window.hpp>
-#include <zraka/progressive.hpp>
-#include <zraka/program_options.hpp>
-#include <zraka/reference.hpp>  // render_mis: the path tracer of 2.3, as the part-6 references
-#include <zraka/render.hpp>
-#include <zraka/scene_argument.hpp>
-#include <zraka/sppm.hpp>
-#include <zraka/stopwatch.hpp>
+#include <zraka/scene/cornell.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/photon_mapping.hpp>
+#include <zraka/app/preview_window.hpp>
+#include <zraka/integrators/progressive.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/app/reference.hpp>  // render_mis: the path tracer of 2.3, as the part-6 references
+#include <zraka/integrators/render.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/integrators/sppm.hpp>
+#include <zraka/core/stopwatch.hpp>
 
 #include <cmath>
 #include <cstdio>

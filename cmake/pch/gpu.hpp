@@ -18,7 +18,7 @@
 #include <GLFW/glfw3.h>
 #endif
 
-#include <zraka/cl.hpp>
-#include <zraka/gl.hpp>
-#include <zraka/gpu_scene.hpp>
-#include <zraka/realtime.hpp>
+#include <zraka/gpu/cl.hpp>
+#include <zraka/gpu/gl.hpp>
+#include <zraka/gpu/gpu_scene.hpp>
+#include <zraka/gpu/realtime.hpp>

@@ -1,6 +1,6 @@
 // Uses the installed headers and the installed resource root.
-#include <zraka/resources.hpp>
-#include <zraka/sphere.hpp>
+#include <zraka/core/resources.hpp>
+#include <zraka/geometry/sphere.hpp>
 
 #include <cstdio>
 

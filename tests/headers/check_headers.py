@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The test headers.self_contained: every header of include/zraka compiles on its own, header-only
+"""The test headers.self_contained: every header of include/zraka (and its folders) compiles on its own, header-only
 (no ZRAKA_COMPILED), included twice (its include guard), with the project's warnings. Only the
 compiler's front end runs (-fsyntax-only): a missing #include or declaration is a front-end
 error, and the headers hold no code worth generating. A test rather than part of the build, so a
@@ -15,7 +15,9 @@ import tempfile
 def main():
     cxx, include = sys.argv[1], sys.argv[2]
     flags = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    headers = sorted(h for h in os.listdir(os.path.join(include, "zraka")) if h.endswith(".hpp"))
+    top = os.path.join(include, "zraka")
+    headers = sorted(os.path.relpath(os.path.join(d, h), top) for d, _, hs in os.walk(top) for h in hs
+                     if h.endswith(".hpp"))
     assert len(headers) > 50, f"only {len(headers)} headers in {include}/zraka"
 
     def check(h):

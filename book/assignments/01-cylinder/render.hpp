@@ -4,8 +4,8 @@
 // which compares the student's picture against target.png.
 #include "cylinder.hpp"
 
-#include <zraka/camera.hpp>
-#include <zraka/image.hpp>
+#include <zraka/cameras/camera.hpp>
+#include <zraka/image/image.hpp>
 
 namespace course {
 

@@ -3,10 +3,10 @@
 // `assignment-02-ggx-render --out target.png`).
 #include "render.hpp"
 
-#include <zraka/cli.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/stopwatch.hpp>
+#include <zraka/app/cli.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/core/stopwatch.hpp>
 
 #include <cstdio>
 

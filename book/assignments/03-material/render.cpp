@@ -3,13 +3,13 @@
 // image is this program built against solution/: `assignment-03-material-render --out target.png`).
 #include "oren_nayar.hpp"
 
-#include <zraka/cli.hpp>
-#include <zraka/cornell.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/path.hpp>
-#include <zraka/render.hpp>
-#include <zraka/stopwatch.hpp>
+#include <zraka/app/cli.hpp>
+#include <zraka/scene/cornell.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/core/stopwatch.hpp>
 
 #include <cstdio>
 #include <memory>

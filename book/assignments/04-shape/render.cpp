@@ -3,13 +3,13 @@
 // this program built against solution/: `assignment-04-shape-render --out target.png`).
 #include "ring.hpp"
 
-#include <zraka/cli.hpp>
-#include <zraka/error.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/path.hpp>
-#include <zraka/render.hpp>
-#include <zraka/scene.hpp>
-#include <zraka/stopwatch.hpp>
+#include <zraka/app/cli.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/scene/scene.hpp>
+#include <zraka/core/stopwatch.hpp>
 
 #include <cstdio>
 #include <memory>

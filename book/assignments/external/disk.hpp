@@ -3,13 +3,13 @@
 // as a zraka::user_shape_t (user_shape.hpp). It gives its area and a uniform point on it, so a
 // glowing material makes it an area light that next-event estimation samples.
 // The plane's t = (c - O).n / (D.n); the hit counts if |p - c| <= r.
-#include <zraka/error.hpp>
-#include <zraka/hit.hpp>
-#include <zraka/onb.hpp>
-#include <zraka/ray.hpp>
-#include <zraka/sampling.hpp>
-#include <zraka/spawn.hpp>
-#include <zraka/user_shape.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/core/hit.hpp>
+#include <zraka/core/onb.hpp>
+#include <zraka/core/ray.hpp>
+#include <zraka/sampling/sampling.hpp>
+#include <zraka/geometry/spawn.hpp>
+#include <zraka/geometry/user_shape.hpp>
 
 #include <cmath>
 #include <string>

@@ -1,22 +1,22 @@
 // An outside project's program: it adds a shape (disk.hpp, a user shape with area sampling) and
 // a glossy material (glossy.hpp, a custom BSDF), checks both with zraka's instructor checks,
 // registers them for scene files (register.hpp), renders scene.yaml with the path tracer that
-// `pathtrace` uses (zraka/path.hpp), and checks that the realtime packer refuses the scene by
+// `pathtrace` uses (zraka/integrators/path.hpp), and checks that the realtime packer refuses the scene by
 // naming the user shape. Usage: disk [out.png [scene.yaml | scene.xml]] (scene.xml: the Mitsuba 3
 // file of the same disk, read through the registry). Exit code 0 only if every check passes and
 // the image is written.
 #include "register.hpp"
 
-#include <zraka/chi_square.hpp>
-#include <zraka/error.hpp>
-#include <zraka/gpu_scene.hpp>
-#include <zraka/image_io.hpp>
-#include <zraka/mitsuba_xml.hpp>
-#include <zraka/path.hpp>
-#include <zraka/render.hpp>
-#include <zraka/sampling.hpp>
-#include <zraka/scene_file.hpp>
-#include <zraka/testing.hpp>
+#include <zraka/app/chi_square.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/gpu/gpu_scene.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/io/mitsuba_xml.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/sampling/sampling.hpp>
+#include <zraka/io/scene_file.hpp>
+#include <zraka/app/testing.hpp>
 
 #include <cstdio>
 #include <string>

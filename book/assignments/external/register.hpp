@@ -1,5 +1,5 @@
 #pragma once
-// The project's types by name, for scene files (zraka/scene_registry.hpp):
+// The project's types by name, for scene files (zraka/scene/scene_registry.hpp):
 //   objects:   - {type: disk, center: [x, y, z], normal: [x, y, z], radius: r, material: NAME}
 //   materials: NAME: {type: glossy, kd: colour, ks: colour, exponent: s}
 // The factories read their fields through zraka::scene_node, so a wrong field is reported as
@@ -7,8 +7,8 @@
 #include "disk.hpp"
 #include "glossy.hpp"
 
-#include <zraka/scene_file.hpp>
-#include <zraka/scene_registry.hpp>
+#include <zraka/io/scene_file.hpp>
+#include <zraka/scene/scene_registry.hpp>
 
 #include <memory>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Assignment 00 (the template), reference solution: the mirror direction of d about a unit
 // normal n, r = d - 2 (d.n) n (book 1.7).
-#include <zraka/vec.hpp>
+#include <zraka/core/vec.hpp>
 
 namespace course {
 

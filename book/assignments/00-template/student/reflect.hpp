@@ -1,7 +1,7 @@
 #pragma once
 // Assignment 00 (the template): the mirror direction of d about a unit normal n.
 // See book/assignments/00-template/README.md.
-#include <zraka/vec.hpp>
+#include <zraka/core/vec.hpp>
 
 namespace course {
 

@@ -7,10 +7,10 @@
 // the discriminant from the distance of the ray's line to the axis, and the stable root pair.
 // Watertight rim: each part accepts its boundary with a margin of its own rounding error, so a
 // ray through the rim is taken by the side or by a cap, never by neither.
-#include <zraka/hit.hpp>
-#include <zraka/onb.hpp>
-#include <zraka/ray.hpp>
-#include <zraka/spawn.hpp>
+#include <zraka/core/hit.hpp>
+#include <zraka/core/onb.hpp>
+#include <zraka/core/ray.hpp>
+#include <zraka/geometry/spawn.hpp>
 
 namespace course {
 

@@ -2,10 +2,10 @@
 // Assignment 01: a finite cylinder with caps, about any axis. Fill in intersect() below; see
 // book/assignments/01-cylinder/README.md. The struct is given; do not change its members, the
 // tests and the renderer use them.
-#include <zraka/hit.hpp>
-#include <zraka/onb.hpp>
-#include <zraka/ray.hpp>
-#include <zraka/spawn.hpp>
+#include <zraka/core/hit.hpp>
+#include <zraka/core/onb.hpp>
+#include <zraka/core/ray.hpp>
+#include <zraka/geometry/spawn.hpp>
 
 namespace course {
 

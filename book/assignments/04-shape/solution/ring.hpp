@@ -1,12 +1,12 @@
 #pragma once
 // Assignment 04, reference solution: a flat ring (an annulus: a disk with a round hole) as a
 // zraka::user_shape_t, with area sampling so that it can be an area light.
-#include <zraka/hit.hpp>
-#include <zraka/onb.hpp>
-#include <zraka/ray.hpp>
-#include <zraka/sampling.hpp>
-#include <zraka/spawn.hpp>
-#include <zraka/user_shape.hpp>
+#include <zraka/core/hit.hpp>
+#include <zraka/core/onb.hpp>
+#include <zraka/core/ray.hpp>
+#include <zraka/sampling/sampling.hpp>
+#include <zraka/geometry/spawn.hpp>
+#include <zraka/geometry/user_shape.hpp>
 
 #include <cmath>
 #include <optional>

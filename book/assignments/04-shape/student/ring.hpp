@@ -2,12 +2,12 @@
 // Assignment 04: a flat ring (an annulus: a disk with a round hole) as a zraka::user_shape_t,
 // with area sampling so that it can be an area light. Fill in intersect, bounds, area and
 // sample_area; see README.md.
-#include <zraka/hit.hpp>
-#include <zraka/onb.hpp>
-#include <zraka/ray.hpp>
-#include <zraka/sampling.hpp>
-#include <zraka/spawn.hpp>
-#include <zraka/user_shape.hpp>
+#include <zraka/core/hit.hpp>
+#include <zraka/core/onb.hpp>
+#include <zraka/core/ray.hpp>
+#include <zraka/sampling/sampling.hpp>
+#include <zraka/geometry/spawn.hpp>
+#include <zraka/geometry/user_shape.hpp>
 
 #include <cmath>
 #include <optional>

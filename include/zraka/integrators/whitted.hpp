@@ -1,0 +1,193 @@
+#pragma once
+// The Whitted ray tracer (book 2.2; the thesis's Listing 2.2 corrected per erratum B10). A ray
+// from the camera finds the *nearest* hit; there the colour is
+//   local light   (Phong or Blinn-Phong, one shadow ray per point light and per area light),
+// + ks  x  the colour seen in the mirror direction          (phong surfaces, Whitted's k_s),
+// + the colour seen in the mirror direction                 (metal; fuzz > 0 samples a direction),
+// + R x reflected + (1 - R) x refracted colour              (glass: exact Fresnel R; R = 1 on
+//                                                            total internal reflection),
+// and each of those colours is the same computation one level deeper: a tree of rays. The
+// recursion stops at max_depth (black: nothing more is known there), where a branch's weight
+// falls below min_weight (Whitted 1980's adaptive depth), or when a ray leaves the scene
+// (the background colour, or the environment map when the scene has one: seen along rays, it
+// does not light diffuse surfaces here, which would need an integral over it).
+//
+// Local light uses the normalised Phong (or Blinn-Phong) lobe of bxdf.hpp, so a Whitted image
+// and a path-traced one agree on direct light; with point lights it is exact, with area lights
+// each sample takes one random point per light (soft shadows; spp > 1 averages them). Whitted
+// tracing has no diffuse inter-reflection (erratum C2): light that bounces off a wall onto
+// another wall is left out, which is what `ambient` crudely stands in for.
+#include <zraka/materials/bxdf.hpp>
+#include <zraka/materials/material.hpp>
+#include <zraka/image/image.hpp>
+#include <zraka/scene/lights.hpp>
+#include <zraka/materials/optics.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/scene/scene.hpp>
+#include <zraka/scene/scene_query.hpp>
+#include <zraka/geometry/spawn.hpp>
+
+#include <cstdint>
+
+namespace zraka {
+
+enum class local_model { phong, blinn_phong };
+
+struct whitted_options {
+  int max_depth = 8;          // levels of the ray tree below the camera ray
+  float min_weight = 1e-3f;   // skip branches that would add less than this fraction
+  local_model model = local_model::phong;
+};
+
+// The diffuse colour of a surface: the albedo (a texture) or phong's kd.
+template <class T> rgb diffuse_colour(const material& m, const hit_t<T>& h) {
+  return m.kind == material_kind::phong ? m.kd : evaluate(m.albedo, h.p, h.facing_normal(), h.uv);
+}
+
+// [listing local-shade]
+// f cos(theta_i) for light arriving from wi: Lambert kd/pi plus the normalised specular lobe,
+// (p+2)/(2 pi) (R.V)^p for Phong or (p+8)/(8 pi) (N.H)^p for Blinn-Phong, both times N.L.
+template <class T>
+rgb local_brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& n, const vec3_t<T>& wo,
+                   const vec3_t<T>& wi, local_model model) {
+  if (m.kind != material_kind::lambertian && m.kind != material_kind::phong) return rgb(0);
+  const T p = T(m.shininess);
+  const shading_terms_t<T> k = model == local_model::phong ? phong_terms(n, wi, wo, p)
+                                                           : blinn_phong_terms(n, wi, wo, p);
+  if (!(glm::dot(n, wo) > T(0))) return rgb(0);  // seen from below the shading normal
+  const T norm = model == local_model::phong ? (p + T(2)) / (T(2) * pi<T>) : (p + T(8)) / (T(8) * pi<T>);
+  const rgb ks = m.kind == material_kind::phong ? m.ks : rgb(0);
+  return diffuse_colour(m, h) * float(k.diffuse / pi<T>) + ks * float(norm * k.specular * k.diffuse);
+}
+// [end]
+
+// [listing direct-light]
+// Light arriving at a diffuse hit straight from the lights (lights.hpp), one shadow ray each:
+// a point light of intensity I at distance d gives irradiance I cos / d^2; an area light is
+// sampled at one point, its radiance weighted by 1 / pdf.
+template <class T>
+rgb direct_light(const scene_t<T>& sc, const light_set_t<T>& lights, const scene_hit_t<T>& sh,
+                 const vec3_t<T>& wo, rng& g, const whitted_options& opt, std::uint64_t& rays) {
+  const material& m = sc.materials[std::size_t(sh.material)];
+  const vec3_t<T> n = sh.facing_shading_normal();
+  const vec3_t<T> ng = sh.h.facing_normal();
+  rgb L(0);
+  for (int k = 0; k < int(lights.size()); ++k) {  // every light, not one chosen at random
+    if (lights.is_environment(k)) continue;  // the sky is Whitted's background, seen by rays only
+    const vec2_t<T> u(g.uniform2());
+    const auto ls = lights.sample_one(k, sh.h, u);
+    if (!ls || ls->Le == rgb(0) || !(glm::dot(ls->wi, ng) > T(0))) continue;  // behind the surface
+    const rgb f = local_brdf_cos(m, sh.h, n, wo, ls->wi, opt.model);
+    if (f == rgb(0)) continue;
+    ++rays;
+    if (!occluded(sc, ls->shadow)) L += f * ls->Le / float(ls->pdf);
+  }
+  return L;
+}
+// [end]
+
+// [listing whitted]
+// The colour seen along r; depth counts the bounces above it, weight what its colour is
+// multiplied by at the camera.
+template <class T>
+rgb whitted_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, const ray_t<T>& r, rng& g,
+                     const whitted_options& opt, std::uint64_t& rays, int depth = 0, float weight = 1.0f) {
+  scene_hit_t<T> sh;
+  ++rays;
+  if (!nearest_hit(sc, r, sh))  // the nearest, not the first in the list
+    return sc.environment ? sc.environment->radiance(r.direction) : sc.background;
+  const material& m = sc.materials[std::size_t(sh.material)];
+  const hit_t<T>& h = sh.h;
+  const vec3_t<T> wo = -r.direction;
+  // A secondary ray, if the tree may grow and the branch still matters.
+  auto trace = [&](const vec3_t<T>& dir, rgb w) {
+    const float bw = weight * max_component(w);
+    if (depth >= opt.max_depth || !(bw >= opt.min_weight)) return rgb(0);
+    return w * whitted_radiance(sc, lights, spawn_ray(h, dir), g, opt, rays, depth + 1, bw);
+  };
+  // Directions bend around the shading normal (smooth on meshes); one that would cross the
+  // geometric surface (possible where the two normals differ) falls back to the geometric one.
+  const vec3_t<T> ng = h.facing_normal(), ns = sh.facing_shading_normal();
+  auto outside = [&](const vec3_t<T>& w) { return glm::dot(w, ng) > T(0); };
+  switch (m.kind) {
+    case material_kind::emitter:
+      return emitted(m, h);
+    case material_kind::lambertian:
+    case material_kind::phong: {
+      rgb c = emitted(m, h) + direct_light(sc, lights, sh, wo, g, opt, rays) + sc.ambient * diffuse_colour(m, h);
+      if (m.kind == material_kind::phong && m.ks != rgb(0)) {
+        const vec3_t<T> w = reflect(r.direction, ns);
+        c += trace(outside(w) ? w : reflect(r.direction, ng), m.ks);
+      }
+      return c;
+    }
+    case material_kind::fuzzy_metal: {  // fuzz 0: the mirror direction exactly
+      hit_t<T> hs = h;
+      hs.normal = sh.shading_normal;
+      auto s = scatter(m, r.direction, hs, g);
+      if (s && !outside(s->direction)) s = scatter(m, r.direction, h, g);
+      return s ? trace(s->direction, s->weight) : rgb(0);
+    }
+    case material_kind::dielectric: {
+      const T eta = relative_ior(h.front_face, T(m.ior));
+      vec3_t<T> n = ns;
+      auto t = refract(r.direction, n, eta);  // none on total internal reflection
+      if (!outside(reflect(r.direction, n)) || (t && outside(*t))) {
+        n = ng;
+        t = refract(r.direction, n, eta);
+      }
+      const float R = t ? float(fresnel_dielectric(-glm::dot(r.direction, n), eta)) : 1.0f;
+      rgb c = trace(reflect(r.direction, n), rgb(R));
+      if (t) c += trace(*t, rgb(1.0f - R));
+      return c;
+    }
+    case material_kind::rough_conductor:  // refused by check_whitted_scene
+    case material_kind::rough_dielectric:
+      return rgb(0);
+  }
+  return rgb(0);
+}
+// [end]
+
+// Whitted's local model knows the built-in materials only: a custom BSDF or a microfacet
+// material used by an object is refused by name rather than drawn as something else.
+template <class T> void check_whitted_scene(const scene_t<T>& sc) {
+  if (!sc.media.empty())
+    throw error("whitted: the scene has participating media (" + sc.media_names() +
+                "), which the Whitted ray tracer cannot render; render it with pathtrace");
+  for_each_object(sc, [&](object_ref o) {
+    const material& m = sc.material_of(o);
+    if (is_custom(m))
+      throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a custom BSDF ('" +
+                  m.bsdf->name() + "'), which the Whitted ray tracer cannot shade; render it with pathtrace");
+    // A glossy lobe is neither a mirror (one ray) nor a local model (a highlight per light):
+    // it needs the integral over directions that path tracing estimates.
+    if (is_microfacet(m))
+      throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a " + kind_name(m.kind) +
+                  ", a rough microfacet surface, which the Whitted ray tracer cannot shade; render it with pathtrace");
+  });
+}
+
+// [listing render-whitted]
+// The whole image on all cores (render.hpp): spp stratified samples per pixel (one sample: the
+// pixel centre), each with its own random stream, so the image is the same for any thread count.
+template <class T>
+render_stats render_whitted(const scene_t<T>& sc, image& img, const whitted_options& opt,
+                            const render_options& ro = {}) {
+  if (img.width != sc.settings.width || img.height != sc.settings.height)
+    throw error("render_whitted: the image size differs from the scene's settings");
+  check_whitted_scene(sc);
+  const light_set_t<T> lights(sc);
+  const auto cam = sc.prepared_camera();
+  return render(img, sc.settings.spp, sc.settings.seed, [&](sample_context& c) {
+    const vec2 o = c.spp == 1 ? vec2(0.5) : pixel_sample(pixel_pattern::stratified, c.sample, c.spp, c.random);
+    const vec2 lens = sc.camera.aperture > 0 ? c.random.uniform2() : vec2(0);
+    const ray_t<T> r = cam.generate(T((c.x + o.x) / img.width), T((c.y + o.y) / img.height), T(lens.x), T(lens.y));
+    return whitted_radiance(sc, lights, r, c.random, opt, c.rays);
+  }, ro);
+}
+// [end]
+
+}  // namespace zraka
