@@ -5,7 +5,7 @@
 #                                               (zraka_pch_kind below picks it from the sources)
 #   zraka_pch_gpu       cmake/pch/gpu.hpp       the same, for those that drive OpenCL or OpenGL
 #   zraka_pch_tests     cmake/pch/tests.hpp     unit tests, assignments' tests
-# CLI11 is in neither: it is compiled once into zraka::compiled (include/zraka/cli.hpp), and the
+# CLI11 is in neither: it is compiled once into zraka::compiled (include/zraka/app/cli.hpp), and the
 # programs' PCH is made with that library's -DZRAKA_COMPILED, like its users.
 #
 # What is in them: standard, GLM, yaml-cpp, tinyobjloader and doctest headers in all; zraka's

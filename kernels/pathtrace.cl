@@ -1,7 +1,7 @@
 // The real-time path tracer (book 4.3): path.hpp's loop and lights.hpp's light module as an
 // OpenCL C 1.2 kernel, one work item per pixel (or per eight pixels: PATH_LANES). Build it after
 // kernels/rng.cl (zraka::cl::build_program_files), with the -D switches of zraka::build_options()
-// (include/zraka/gpu_scene.hpp):
+// (include/zraka/gpu/gpu_scene.hpp):
 //   METHOD_NAIVE | METHOD_NEE | METHOD_MIS       the algorithm (path.hpp's integrator)
 //   MAX_DEPTH=n RR_DEPTH=n                       bounces; Russian roulette from bounce n on
 //   HAS_SPHERES HAS_QUADS HAS_PLANES HAS_TRIANGLES   which shapes exist (triangles: with the BVH)

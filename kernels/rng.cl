@@ -1,4 +1,4 @@
-// The counter-based random numbers of include/zraka/rng.hpp, in OpenCL C 1.2, with the same
+// The counter-based random numbers of include/zraka/core/rng.hpp, in OpenCL C 1.2, with the same
 // arithmetic word for word, so a kernel draws bit-identical numbers to the CPU for the same
 // (seed, pixel, sample, dimension). tests/test_cl.cpp checks that on many inputs.
 // uint is 32 bits and wraps on overflow in OpenCL C exactly as std::uint32_t does in C++.

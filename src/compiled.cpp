@@ -1,4 +1,4 @@
-// The compiled part of zraka, the library zraka::compiled (include/zraka/compiled.hpp): the
+// The compiled part of zraka, the library zraka::compiled (include/zraka/core/compiled.hpp): the
 // definitions that the headers below hold for header-only use, compiled once here instead of in
 // every program. One unit, so that each is defined once.
 #ifndef ZRAKA_COMPILED

@@ -1,4 +1,4 @@
-// The preview window of --window (include/zraka/preview_window.hpp), compiled into zraka::compiled
+// The preview window of --window (include/zraka/app/preview_window.hpp), compiled into zraka::compiled
 // where zraka is built with GLFW and libepoxy (ZRAKA_COMPILED_GL). A unit of its own, so that
 // only a program that opens the window pulls it, and GLFW with it, out of the static library.
 #ifndef ZRAKA_COMPILED_GL

@@ -6,7 +6,7 @@ In a source file a listing is a tagged region:
     ...code...
     // [end]
 In a book page a listing is a fenced code block preceded by a marker naming file and tag:
-    <!-- listing: include/zraka/sphere.hpp sphere-intersect -->
+    <!-- listing: include/zraka/geometry/sphere.hpp sphere-intersect -->
     ```cpp
     ...code...
     ```

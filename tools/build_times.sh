@@ -23,7 +23,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cmake_args=() chapters_only=0 rtiow="" build="" jobs=$(nproc) repeat=1 skip_full=0 chapters=""
-test_file=tests/test_sphere.cpp header=include/zraka/whitted.hpp
+test_file=tests/test_sphere.cpp header=include/zraka/integrators/whitted.hpp
 
 die() { echo "error: $*" >&2; exit 1; }
 while (($#)); do

@@ -5,7 +5,7 @@
         --spp 1024 -o cb-mitsuba.pfm [--png cb-mitsuba.png] [--seed 1] [--compare cb-zraka.pfm] [--floor cb-mitsuba-seed2.pfm]
 
 zraka reads the same file (`pathtrace --scene scenes/mitsuba/cornell-box.xml --pfm cb-zraka.pfm`,
-include/zraka/mitsuba_xml.hpp): the two renderers see one scene description and nothing is
+include/zraka/io/mitsuba_xml.hpp): the two renderers see one scene description and nothing is
 converted on Mitsuba's side. --spp overrides the file's sample count, as zraka's --spp does.
 --compare prints the RMSE and per-channel means against a zraka PFM (tools/mitsuba_reference.py's
 compare); --floor, a second Mitsuba image of another seed, prints the RMSE between Mitsuba's two

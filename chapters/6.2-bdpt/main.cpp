@@ -1,6 +1,6 @@
 // Chapter 6.2 — bidirectional path tracing (Lafortune and Willems 1993, Veach and Guibas 1994;
 // erratum E2). A camera subpath and a light subpath per sample, joined in every way (s, t) and
-// weighted by multiple importance sampling (include/zraka/bdpt.hpp). The program renders one
+// weighted by multiple importance sampling (include/zraka/integrators/bdpt.hpp). The program renders one
 // scene with BDPT and with the path tracer of chapter 2.3 (`mis`), at 1, 2, 4, ... samples per
 // pixel, and prints each one's error against run time against a reference: a long `mis` render
 // (--ref-spp samples in two halves with seeds of their own, whose difference measures the

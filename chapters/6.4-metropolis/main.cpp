@@ -1,6 +1,6 @@
 // Chapter 6.4 — Metropolis light transport in primary sample space (Kelemen et al. 2002, after
 // Veach and Guibas 1997; errata E1–E4). Markov chains over the random numbers of the path tracer
-// of chapter 2.3 (include/zraka/pss.hpp, include/zraka/metropolis.hpp): once a chain has found
+// of chapter 2.3 (include/zraka/sampling/pss.hpp, include/zraka/integrators/metropolis.hpp): once a chain has found
 // light that comes through a small opening, its small steps stay near that path and explore its
 // neighbours, where independent samples would have to find the opening again each time.
 // The program renders one scene with MLT, with BDPT (chapter 6.2) and with the path tracer

@@ -7,12 +7,12 @@
 #include "scene.hpp"
 
 #ifndef CL_TARGET_OPENCL_VERSION
-#define CL_TARGET_OPENCL_VERSION 120  // as in include/zraka/cl.hpp
+#define CL_TARGET_OPENCL_VERSION 120  // as in include/zraka/gpu/cl.hpp
 #endif
 #if __has_include(<CL/cl.h>)
 #include <CL/cl.h>
 #endif
-#if __has_include(<epoxy/gl.h>) && __has_include(<GLFW/glfw3.h>)  // as in include/zraka/gl.hpp
+#if __has_include(<epoxy/gl.h>) && __has_include(<GLFW/glfw3.h>)  // as in include/zraka/gpu/gl.hpp
 #include <epoxy/gl.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
