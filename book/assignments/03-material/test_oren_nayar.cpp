@@ -146,7 +146,7 @@ TEST_CASE("oren-nayar: no NaN or infinity at grazing angles and at the normal") 
 
 namespace {
 
-// The white furnace of integrators.hpp's tests: the camera inside a unit sphere of the material
+// The white furnace of path.hpp's tests (tests/test_path.cpp): the camera inside a unit sphere of the material
 // that glows with Le = 1 from both faces. Every bounce sees Le, so L = Le sum of products of
 // albedos; a constant albedo a gives Le / (1 - a).
 scene furnace(std::shared_ptr<const custom_bsdf> f) {
