@@ -141,6 +141,34 @@ TEST_CASE("course program: pathtrace_main gives the same image for a seed on any
   fs::remove(a), fs::remove(b);
 }
 
+TEST_CASE("course program: pathtrace_main gives the course's binary pathtrace's whole command line") {
+  const scene_registry reg = course_registry();
+  auto course_main = [&](int argc, char** argv) { return pathtrace_main(argc, argv, reg); };
+  const fs::path ref = scratch("ref.pfm"), csv = scratch("error.csv"), png = scratch("t.png");
+  // A reference, then the error against it per pass (--reference, --report), under a time budget.
+  run_result res = run(course_main, {"course", "--scene", scene_file, "--spp", "8", "--pfm", ref.string(), "--out",
+                                     png.string()});
+  REQUIRE_MESSAGE(res.code == 0, res.err);
+  res = run(course_main, {"course", "--scene", scene_file, "--spp", "4", "--integrator", "naive", "--reference",
+                          ref.string(), "--report", csv.string(), "--time-budget", "100", "--out", png.string()});
+  REQUIRE_MESSAGE(res.code == 0, res.err);
+  std::ifstream table(csv);
+  std::string header;
+  std::getline(table, header);
+  CHECK_MESSAGE(header.find("rmse") != std::string::npos, header);
+  // The built-in scenes by name and a Mitsuba 3 file still load beside the course's kinds.
+  for (const char* scene : {"cornell", "scenes/mitsuba/cornell-box.xml"}) {
+    res = run(course_main, {"course", "--scene", scene, "--width", "8", "--height", "8", "--spp", "1", "--out",
+                            png.string()});
+    CHECK_MESSAGE(res.code == 0, scene << ": " << res.err);
+  }
+  // Its refusals are pathtrace's.
+  res = run(course_main, {"course", "--scene", scene_file, "--report", csv.string(), "--out", png.string()});
+  CHECK(res.code == 1);
+  CHECK(res.err == "error: --report needs --reference\n");
+  fs::remove(ref), fs::remove(csv), fs::remove(png);
+}
+
 TEST_CASE("course program: chapter 2.3's pathtrace, with no registry, cannot load the course's scene") {
   const fs::path out = scratch("none.png");
   const run_result r = run([](int argc, char** argv) { return pathtrace_main(argc, argv); },
