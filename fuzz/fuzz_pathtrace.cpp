@@ -1,8 +1,10 @@
-// Fuzz target: the command line of pathtrace (chapters/2.3-pathtrace/main.cpp). The input is the
-// argument list, one argument per line; the chapter's main() is compiled into this program as
-// zraka_pathtrace_main and called with it.
+// Fuzz target: the command line of pathtrace (chapters/2.3-pathtrace/main.cpp, which calls
+// zraka::pathtrace_main, include/zraka/app/pathtrace_main.hpp). The input is the argument list, one
+// argument per line; the chapter's main() is compiled into this program as zraka_pathtrace_main
+// and called with it, and the program's body (pathtrace_main.hpp's definitions) is compiled here
+// too, not taken from zraka::compiled, so that the macros below reach it.
 //
-// Rendering is cut short here, not in the chapter: render_progressive in that main() is replaced,
+// Rendering is cut short here, not in the chapter: render_progressive in that body is replaced,
 // by a macro, with small_render below (and --window, preview_window, with no_window, which refuses it), which refuses images above 32x32 pixels (a zraka::error,
 // as the program's own refusals are) and renders at most 2 samples per pixel. Everything before
 // the render (parsing, scene loading, validation) and after it (reports, PNG/PFM writing) runs as
@@ -14,8 +16,13 @@
 // in the folder or in the resource root (scenes/, tests/scenes/, ...).
 #include "fuzz_common.hpp"
 
-// Everything main.cpp includes, first, so that the macros below reach main.cpp's body only.
+// Everything pathtrace_main.hpp includes, first, so that the macros below reach its body only.
 #include <zraka/app/cli.hpp>
+#include <zraka/core/input_file.hpp>
+#include <zraka/core/stopwatch.hpp>
+#include <zraka/io/mitsuba_export.hpp>
+#include <zraka/scene/named_scenes.hpp>
+#include <zraka/scene/scene_registry.hpp>
 #include <zraka/sampling/convergence.hpp>
 #include <zraka/scene/cornell.hpp>
 #include <zraka/core/error.hpp>
@@ -56,7 +63,8 @@ zraka::image small_render(int width, int height, zraka::progressive_options opt,
 // --window would open a window (and wait for a key) wherever DISPLAY is set: the harness has none
 // to offer, so the window is replaced by one that refuses it, as the program does without a display.
 struct no_window {
-  no_window(const zraka::program_options& opt, int, int, const zraka::image* = nullptr) {
+  no_window(const zraka::program_options& opt, int, int, const zraka::image* = nullptr, const char* = nullptr,
+            const std::filesystem::path& = {}) {
     if (opt.window) throw zraka::error("fuzz harness: no --window");
   }
   bool show(const zraka::image&, int, double) { return true; }
@@ -66,6 +74,8 @@ struct no_window {
 
 #define preview_window zraka_fuzz::no_window
 #define render_progressive zraka_fuzz::small_render
+#define ZRAKA_COMPILING_PATHTRACE_MAIN  // the definitions here, also when zraka::compiled is linked
+#include <zraka/app/pathtrace_main.hpp>
 #define main zraka_pathtrace_main
 #include "chapters/2.3-pathtrace/main.cpp"
 #undef main

@@ -8,7 +8,7 @@ Read: the tracked book pages, READMEs and sources. A name is a path or a bare fi
 .hpp, .cpp, .cl, .py, .sh or .cmake. In C++ and OpenCL files only comments and #include "..." lines
 count (elsewhere a member access can look like a file name), in Python files the docstring and comments, and in pages the C++ blocks do not. A path must exist relative
 to the root, the naming file's folder, include/ or include/zraka/; a bare name must be the name of some tracked file. Not checked: names in <...> (system
-headers: the compiler checks them), names after $ or } (shell and CMake variables), build outputs
+headers: the compiler checks them), names after $ or } (shell and CMake variables) or * (globs), build outputs
 (CMakeFiles/, build/), placeholders written in capitals (test_X.cpp, FOLDER/NAME.hpp) and the few
 names listed in EXAMPLES, which the text uses as examples of what a reader writes.
 Prints each stale name with where it is; exit code 1 if any. CTest runs it as book.file_names."""
@@ -18,7 +18,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-NAME = re.compile(r'(?<![\w./$}<-])((?:\.\./)*(?:[\w.-]+/)*[\w-]+\.(?:hpp|cpp|cl|py|sh|cmake))(?![\w/])')
+NAME = re.compile(r'(?<![\w./$}<*-])((?:\.\./)*(?:[\w.-]+/)*[\w-]+\.(?:hpp|cpp|cl|py|sh|cmake))(?![\w/])')
 TEXT = re.compile(r'\.(md|txt|hpp|cpp|cl|py|sh|cmake|yaml|xml)$|CMakeLists\.txt$')
 CODE = ('.hpp', '.cpp', '.cl', '.h')
 # Names the text gives as examples of a reader's own file, not as files of the project.

@@ -102,6 +102,10 @@ struct program_options {
   // Adds the shared options, parses, checks. Returns the exit code when main should stop now.
   // Inline for the resource root (the program's, not the library's; compiled.hpp).
   std::optional<int> parse(int argc, char** argv) { return parse_shared(argc, argv, resource_root()); }
+  // The same with the root given: for a program compiled into the library (pathtrace_main.hpp).
+  std::optional<int> parse(int argc, char** argv, const std::filesystem::path& root) {
+    return parse_shared(argc, argv, root);
+  }
 
   // The render options that --threads asks for.
   render_options render() const {

@@ -33,6 +33,7 @@
 #include <zraka/scene/lights.hpp>
 #include <zraka/textures/noise.hpp>
 #include <zraka/integrators/path.hpp>
+#include <zraka/scene/render_it_with.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/accel/triangle_bvh.hpp>
 
@@ -340,16 +341,16 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   auto& f = g.features;
   // C++ code cannot run in the kernel: refuse it by name, before anything is built.
   if (!sc.user_shapes.empty())
-    throw error("realtime: the scene has a user shape ('" + sc.user_shapes[0].shape->name() +
-                "'), which the OpenCL kernel cannot intersect; render it with pathtrace");
+    throw error("realtime: " + sc.user_shape_label(0) + " is a user shape ('" + sc.user_shapes[0].shape->name() +
+                "'), which the OpenCL kernel cannot run; " + render_it_with(sc));
   if (!sc.media.empty())  // book 6.1: the kernel has no free-flight sampling yet
     throw error("realtime: the scene has participating media ('" + sc.media[0].name +
-                "'), which the OpenCL kernel does not render; render it with pathtrace");
+                "'), which the OpenCL kernel does not render; " + render_it_with(sc));
   for_each_object(sc, [&](object_ref o) {
     const material& m = sc.material_of(o);
     if (is_custom(m))
       throw error("realtime: " + sc.material_label(sc.material_index(o)) + " is a custom BSDF ('" +
-                  m.bsdf->name() + "'), which the OpenCL kernel cannot run; render it with pathtrace");
+                  m.bsdf->name() + "'), which the OpenCL kernel cannot run; " + render_it_with(sc));
   });
   const path_tracer_t<T> tracer(sc, opt);  // the CPU's own checks, and its lights
   const light_set_t<T>& lights = tracer.lights;

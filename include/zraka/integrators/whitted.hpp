@@ -25,6 +25,7 @@
 #include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/scene/render_it_with.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/scene/scene_query.hpp>
 #include <zraka/geometry/spawn.hpp>
@@ -156,17 +157,17 @@ rgb whitted_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, const r
 template <class T> void check_whitted_scene(const scene_t<T>& sc) {
   if (!sc.media.empty())
     throw error("whitted: the scene has participating media (" + sc.media_names() +
-                "), which the Whitted ray tracer cannot render; render it with pathtrace");
+                "), which the Whitted ray tracer cannot render; " + render_it_with(sc));
   for_each_object(sc, [&](object_ref o) {
     const material& m = sc.material_of(o);
     if (is_custom(m))
       throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a custom BSDF ('" +
-                  m.bsdf->name() + "'), which the Whitted ray tracer cannot shade; render it with pathtrace");
+                  m.bsdf->name() + "'), which the Whitted ray tracer cannot shade; " + render_it_with(sc));
     // A glossy lobe is neither a mirror (one ray) nor a local model (a highlight per light):
     // it needs the integral over directions that path tracing estimates.
     if (is_microfacet(m))
       throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a " + kind_name(m.kind) +
-                  ", a rough microfacet surface, which the Whitted ray tracer cannot shade; render it with pathtrace");
+                  ", a rough microfacet surface, which the Whitted ray tracer cannot shade; " + render_it_with(sc));
   });
 }
 

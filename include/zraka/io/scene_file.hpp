@@ -1053,6 +1053,8 @@ class scene_reader {
     located(o, label, [&] { shape = reg.make(scene_node(*this, o, label, type, reg.keys, r)); });
     if (!shape) fail(o, label, "the factory for '" + type + "' made no shape");
     located(o, label, [&] { out_.sc.add(std::move(shape), mat); });
+    out_.sc.user_shape_labels.resize(out_.sc.user_shapes.size() - 1);  // for refusals by name
+    out_.sc.user_shape_labels.push_back(o["name"] ? "object '" + o["name"].Scalar() + "'" : path);
     r["material"] = mat_name;
     r.SetStyle(YAML::EmitterStyle::Flow);
     resolved_["objects"].push_back(r);

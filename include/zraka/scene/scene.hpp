@@ -91,6 +91,7 @@ template <class T> struct scene_t {
   std::vector<object_t<triangle_t<T>>> triangles;
   std::vector<mesh_object_t<T>> meshes;
   std::vector<object_t<user_shape_ptr<T>>> user_shapes;
+  std::vector<std::string> user_shape_labels;  // by index, from the scene file: "object 'ring'", "objects[2]"
   std::vector<point_light_t<T>> point_lights;
   rgb background{0};               // radiance of rays that leave the scene (hit only)
   // The environment light (environment.hpp): when set, rays that leave the scene see it instead
@@ -117,6 +118,13 @@ template <class T> struct scene_t {
     if (i >= 0 && std::size_t(i) < material_names.size() && !material_names[std::size_t(i)].empty())
       return "material '" + material_names[std::size_t(i)] + "'";
     return "material " + std::to_string(i);
+  }
+
+  // User shape i as the scene file names it ("object 'ring'", or its place "objects[2]"), else
+  // "user shape 2": for refusals.
+  std::string user_shape_label(std::size_t i) const {
+    if (i < user_shape_labels.size() && !user_shape_labels[i].empty()) return user_shape_labels[i];
+    return "user shape " + std::to_string(i);
   }
 
   // The special members and add_material are defined below the class, so that with
