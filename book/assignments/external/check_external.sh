@@ -10,7 +10,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
-test -f "$tmp/prefix/include/zraka/testing.hpp" || { echo "zraka/app/testing.hpp not installed"; exit 1; }
+test -f "$tmp/prefix/include/zraka/app/testing.hpp" || { echo "zraka/app/testing.hpp not installed"; exit 1; }
 cmake -S "$here" -B "$tmp/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$tmp/build" >/dev/null
 "$tmp/build/disk" "$tmp/disk.png"
