@@ -184,9 +184,10 @@ std::vector<double> expected_counts(const grid2& g, Density&& density, double n,
 // along x and along y. Each bin is refined (the cell with the largest error estimate split along
 // the axis that changed more) until it is within 0.05 sqrt(E + 1) expected samples of its own
 // noise, so that X^2 moves by much less than its spread. Then the bins with the largest errors
-// are refined further until the errors of all bins together are within 0.5 samples, or 0.05
-// sqrt(rest + 1) of the expected count of the extra bin of chi_square_2d: that bin expects n minus
-// the sum of the others and would collect their errors (GGX at alpha 0.001 needs this).
+// are refined further, because the extra bin of chi_square_2d expects n minus the sum of the
+// others and collects their errors (GGX at alpha 0.001: 70 samples in a bin that expects none,
+// X^2 = 106 for 32 dof): until the errors of all bins together, d, add at most s = 5 % of X^2's
+// spread sqrt(2 m) to it (m: the bins expecting 5 or more), d <= max(s, sqrt(s rest)), s >= 0.5.
 // A lobe narrower than the first points (alpha = 0.001 is 1e-6 wide in cos theta) is invisible
 // to the estimate, so the samples guide it too: a cell holding 16 or more samples, 90 % of them
 // in one half along an axis, is split there first. That only chooses where to look closer: a
@@ -295,9 +296,12 @@ adaptive_counts expected_counts_adaptive(const grid2& g, Density&& density, doub
   // All bins together, for the extra bin: refine the bin with the largest error.
   double sum = 0, sum_error = 0;
   for (std::size_t b = 0; b < nb; ++b) sum += total[b], sum_error += error[b];
+  double m = 0;
+  for (std::size_t b = 0; b < nb; ++b) m += total[b] * n >= 5;
+  const double spread = std::max(0.5, 0.05 * std::sqrt(2 * m));
   for (long budget = 8L * long(nb) + 4096; budget > 0; --budget) {
     const double rest = std::max(0.0, 1 - sum) * n;
-    if (!(sum_error * n > std::max(0.5, 0.05 * std::sqrt(rest + 1)))) break;
+    if (!(sum_error * n > std::max(spread, std::sqrt(spread * rest)))) break;
     const std::size_t b = std::size_t(std::max_element(error.begin(), error.end()) - error.begin());
     sum -= total[b], sum_error -= error[b];
     std::size_t worst = 0;
