@@ -9,7 +9,8 @@
 # with the reason. Exit code 1 when a chapter fails to build or to run; a chapter whose run takes
 # longer than 10 s is flagged but does not fail. Then it runs every command of the chapter's
 # page (the build/bin/... lines of its ```sh blocks, and the `$ build/bin/...` lines of pasted
-# outputs) from the same scratch folder; a command that fails counts as a failed run. At the
+# outputs) from the same scratch folder; a command that fails counts as a failed run and shows
+# in the table's page column (exit is the program's own run at its defaults). At the
 # end the checkout must hold nothing new (git status and build/out/ as before): the programs
 # write into the folder they run in. CTest runs this as book.course_flow.
 set -uo pipefail
