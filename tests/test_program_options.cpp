@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ int run(program_options& o, std::vector<std::string> args) {
 TEST_CASE("program_options: defaults, and given values override them") {
   program_options o{"t", take::image | take::depth};
   o.width = 40, o.height = 30, o.out = "x.png";
+  std::filesystem::create_directories("sub");  // an output's folder must exist (checked at parse)
   CHECK(run(o, {"--spp", "8", "--out", "sub/y.ppm"}) == -1);
   CHECK(o.width == 40);
   CHECK(o.spp == 8);
@@ -106,7 +108,25 @@ TEST_CASE("program_options: scene settings are the defaults unless the command l
 }
 
 TEST_CASE("program_options: output_file keeps a name with a folder, input_file finds what it wrote") {
+  std::filesystem::create_directories("a");
   CHECK(output_file("a/b.png") == std::filesystem::path("a/b.png"));
   CHECK(output_file("/tmp/b.png") == std::filesystem::path("/tmp/b.png"));
   CHECK(input_file("no-such-file.pfm") == std::filesystem::path("no-such-file.pfm"));  // reported as given
+}
+
+TEST_CASE("program_options: every output name is checked before any work, and an error names its option") {
+  // A folder that does not exist: refused at parse (--out) or by output_file (a program's other
+  // outputs, e.g. --pfm), before a render could write anything else.
+  std::filesystem::remove_all("no-such-folder");
+  {
+    program_options o{"t", take::image};
+    o.out = "x.png";
+    CHECK(run(o, {"--out", "no-such-folder/x.png"}) == 1);
+  }
+  CHECK_THROWS_WITH_AS(output_file("no-such-folder/x.pfm"),
+                       "cannot write 'no-such-folder/x.pfm': the folder 'no-such-folder' does not exist", error);
+  // An empty --out: the error says which option was empty.
+  program_options o{"t", take::image};
+  o.out = "x.png";
+  CHECK(run(o, {"--out", ""}) == 1);
 }

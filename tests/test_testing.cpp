@@ -4,6 +4,7 @@
 #include <zraka/app/testing.hpp>
 #include <zraka/sampling/sampling.hpp>
 #include <zraka/geometry/sphere.hpp>
+#include <zraka/materials/microfacet.hpp>
 
 #include <doctest/doctest.h>
 
@@ -33,6 +34,96 @@ TEST_CASE("testing: chi-square accepts a sampler with its own pdf and rejects a 
       [](const vec3& w) { return cosine_hemisphere_pdf(w); }, 1000, direction_grid(10, 20));
   CHECK_FALSE(below.ok);
   CHECK(below.message.find("where the pdf is zero") != std::string::npos);
+}
+
+namespace {
+// A GGX reflection sampler (visible normals, mirrored about the facet) and its pdf over
+// directions, with pdf_scale and alpha_scale to make the pdf wrong on purpose. Directions below
+// the horizon are rejected and have pdf 0, as a BRDF's would.
+struct ggx_reflection {
+  ggx_t<double> d;
+  vec3 wo;
+  double pdf_scale = 1, alpha_scale = 1;
+  std::optional<vec3> sample(rng& g) const {
+    const vec3 h = d.sample_visible(wo, g.uniform2());
+    const vec3 wi = 2 * glm::dot(wo, h) * h - wo;
+    if (!(wi.z > 0)) return std::nullopt;
+    return wi;
+  }
+  double pdf(const vec3& wi) const {
+    if (!(wi.z > 0)) return 0;
+    const vec3 h = glm::normalize(wo + wi);
+    const ggx_t<double> p(d.ax * alpha_scale);
+    return pdf_scale * p.visible_pdf(wo, h) / (4 * std::abs(glm::dot(wo, h)));
+  }
+};
+vec3 incident(double degrees) {
+  const double t = degrees * pi<double> / 180;
+  return {std::sin(t), 0, std::cos(t)};
+}
+}  // namespace
+
+TEST_CASE("testing: a correct GGX sampler passes from alpha 0.001 to 1, normal to grazing; a 1% wrong pdf fails") {
+  // The grid is the plain one an instructor would write; the adaptive quadrature of each bin
+  // (expected_counts_adaptive) resolves lobes down to 1e-6 in cos theta. 20 tests: Sidak level.
+  const double level = sidak_level(0.01, 20);
+  const long n = 100000;
+  const grid2 grid = direction_grid(16, 32);
+  for (const double alpha : {0.001, 0.01, 0.1, 0.5, 1.0})
+    for (const double deg : {0.0, 45.0, 80.0, 89.0}) {
+      const ggx_reflection f{ggx_t<double>(alpha), incident(deg)};
+      rng g(std::uint64_t(alpha * 1e4 + deg));
+      const auto r = zt::directions_follow_pdf([&] { return f.sample(g); }, [&](const vec3& w) { return f.pdf(w); },
+                                               n, grid, level);
+      CHECK_MESSAGE(r.ok, "alpha " << alpha << ", " << deg << " deg: " << r.message);
+    }
+  // The pdf 1 % too large or too small everywhere, or its lobe 1 % narrower: each fails. At
+  // alpha = 1 half of the samples go below the horizon and 1 % of the pdf's mass is 0.5 % of the
+  // draws: a million of them make that 8 standard deviations of the rejected count.
+  auto run = [&](double alpha, double deg, double pdf_scale, double alpha_scale, long draws, const grid2& bins) {
+    const ggx_reflection f{ggx_t<double>(alpha), incident(deg), pdf_scale, alpha_scale};
+    rng g(77);
+    return zt::directions_follow_pdf([&] { return f.sample(g); }, [&](const vec3& w) { return f.pdf(w); }, draws,
+                                     bins, level);
+  };
+  for (const double alpha : {0.001, 0.1, 1.0}) {
+    const long draws = alpha == 1 ? 1000000 : n;
+    const auto big = run(alpha, 30, 1.01, 1, draws, grid);
+    CHECK_FALSE_MESSAGE(big.ok, "alpha " << alpha << ": " << big.message);
+    // All of the narrow lobe is above the horizon: its integral is 1.01.
+    if (alpha == 0.001)
+      CHECK_MESSAGE(big.message.find("integrates to 1.01 over the grid, more than 1") != std::string::npos, big.message);
+    const auto small = run(alpha, 30, 0.99, 1, draws, grid);
+    CHECK_FALSE_MESSAGE(small.ok, "alpha " << alpha << ": " << small.message);
+  }
+  for (const double alpha : {0.1, 1.0}) {
+    const auto narrow = run(alpha, 30, 1, 0.99, 1000000, grid);
+    CHECK_FALSE_MESSAGE(narrow.ok, "alpha " << alpha << ": " << narrow.message);
+  }
+  // A shape error inside one bin is invisible to the test: at alpha = 0.001 the whole lobe is in
+  // one bin of the grid above. A grid on the lobe sees it (at normal incidence the lobe is
+  // 2 alpha^2 wide in 1 - cos theta; what lies beyond 50 alpha^2, 4 % of the mass, is the extra bin).
+  const grid2 cap = direction_grid(16, 4, 1 - 50 * 0.001 * 0.001);
+  const auto right = run(0.001, 0, 1, 1, n, cap);
+  CHECK_MESSAGE(right.ok, right.message);
+  const auto narrow = run(0.001, 0, 1, 0.99, 1000000, cap);
+  CHECK_FALSE_MESSAGE(narrow.ok, narrow.message);
+}
+
+TEST_CASE("testing: a sampler that returns nothing is named as such, not as a zero pdf") {
+  rng g(5);
+  const auto none = zt::directions_follow_pdf([&]() -> std::optional<vec3> { return std::nullopt; },
+                                              [](const vec3& w) { return cosine_hemisphere_pdf(w); }, 1000,
+                                              direction_grid(10, 20));
+  CHECK_FALSE(none.ok);
+  CHECK_MESSAGE(none.message.find("returned no sample in 1000 draws") != std::string::npos, none.message);
+  CHECK_MESSAGE(none.message.find("pdf is zero") == std::string::npos, none.message);
+  // A zero vector is a rejection too.
+  const auto zero = zt::directions_follow_pdf([&] { return vec3(0); },
+                                              [](const vec3& w) { return cosine_hemisphere_pdf(w); }, 1000,
+                                              direction_grid(10, 20));
+  CHECK_FALSE(zero.ok);
+  CHECK(zero.message.find("returned no sample") != std::string::npos);
 }
 
 TEST_CASE("testing: a 2D sampler against its density") {

@@ -9,7 +9,8 @@
 # with the reason. Exit code 1 when a chapter fails to build or to run; a chapter whose run takes
 # longer than 10 s is flagged but does not fail. Then it runs every command of the chapter's
 # page (the build/bin/... lines of its ```sh blocks, and the `$ build/bin/...` lines of pasted
-# outputs) from the same scratch folder; a command that fails counts as a failed run. At the
+# outputs) from the same scratch folder; a command that fails counts as a failed run and shows
+# in the table's page column (exit is the program's own run at its defaults). At the
 # end the checkout must hold nothing new (git status and build/out/ as before): the programs
 # write into the folder they run in. CTest runs this as book.course_flow.
 set -uo pipefail
@@ -57,16 +58,19 @@ for folder in "${folders[@]}"; do
   slug=${folder#*-}
   section=${folder%%-*}
   if ! grep -Eq "(^|[ :])$slug(\$|[ :])" <<<"$targets"; then
-    rows+=("$section|$slug|-|-|-|skipped: not configured (a dependency in needs.txt is missing)")
+    why="the build tree has no target $slug"
+    [[ -f "$root/chapters/$folder/needs.txt" ]] &&
+      why="$why; its needs.txt lists $(grep -v '^#' "$root/chapters/$folder/needs.txt" | tr '\n' ' ')(see the configure output)"
+    rows+=("$section|$slug|-|-|-|-|skipped: $why")
     skipped=$((skipped + 1))
-    echo "course_flow: $folder: skipped, target $slug is not configured" >&2
+    echo "course_flow: $folder: skipped: $why" >&2
     continue
   fi
   echo "course_flow: $folder: building $slug" >&2
   t0=$EPOCHREALTIME
   if ! cmake --build "$build" --target "$slug" >"$logdir/$slug.build" 2>&1; then
     tb=$(secs "$t0" "$EPOCHREALTIME")
-    rows+=("$section|$slug|$tb|-|-|BUILD FAILED")
+    rows+=("$section|$slug|$tb|-|-|-|BUILD FAILED")
     failed=$((failed + 1))
     echo "course_flow: $folder: the build failed:" >&2
     tail -n 20 "$logdir/$slug.build" >&2
@@ -88,7 +92,7 @@ for folder in "${folders[@]}"; do
       if command -v xvfb-run >/dev/null; then
         wrap=("${xvfb[@]}") note="$note, xvfb-run"
       elif [[ -z "${DISPLAY:-}" ]]; then
-        rows+=("$section|$slug|$tb|-|-|skipped: needs a display (no DISPLAY, no xvfb-run)")
+        rows+=("$section|$slug|$tb|-|-|-|skipped: needs a display (no DISPLAY, no xvfb-run)")
         skipped=$((skipped + 1))
         continue
       fi
@@ -117,27 +121,35 @@ for folder in "${folders[@]}"; do
   # The page's commands, from the same scratch folder.
   page=$(ls "$root"/book/"$section"-*.md 2>/dev/null | head -n 1)
   [[ $section == 0.0 ]] && page="$root/book/intro.md"
+  page_col="-"
   if [[ -n $page && -f $page && ${wrap[*]:-} == "" ]]; then
     pc=0 pf=0
     while IFS= read -r cmd; do
       [[ -z $cmd || $cmd == *xvfb-run* || $cmd == *pathtrace_bench* || $cmd == *bvh_embree* ]] && continue
       pc=$((pc + 1))
-      if ! (cd "$work" && timeout "$run_timeout" bash -c "${cmd//build\/bin\//$bin/}") >>"$logdir/$slug.page" 2>&1; then
-        # A page also shows commands that must fail (a bad scene): those print "error:".
-        if ! tail -n 3 "$logdir/$slug.page" | grep -q '^error: '; then
-          pf=$((pf + 1))
-          echo "course_flow: $folder: page command failed: $cmd" >&2
-          tail -n 5 "$logdir/$slug.page" >&2
+      (cd "$work" && timeout "$run_timeout" bash -c "${cmd//build\/bin\//$bin/}") >>"$logdir/$slug.page" 2>&1
+      pcode=$?
+      # A page also shows commands that must fail (a bad scene): those print "error:".
+      if [[ $pcode -ne 0 ]] && ! tail -n 3 "$logdir/$slug.page" | grep -q '^error: '; then
+        pf=$((pf + 1))
+        echo "course_flow: $folder: page command exited with $pcode: $cmd" >&2
+        if [[ $pcode -eq 127 ]]; then
+          # bash's code for a command it did not find: name it, if that is what happened.
+          missing=$(grep -o '[^ :]*: command not found' "$logdir/$slug.page" | tail -n 1)
+          [[ -n $missing ]] && echo "course_flow: $folder: ${missing%: command not found} is not installed (tools/setup.sh installs what the pages use)" >&2
         fi
+        tail -n 5 "$logdir/$slug.page" >&2
       fi
     done < <(page_commands "$page")
     note="$note; page: $pc commands"
+    page_col="$pc ok"
     if [[ $pf -gt 0 ]]; then
       note="$note, $pf FAILED"
+      page_col="$pf/$pc FAIL"
       failed=$((failed + 1))
     fi
   fi
-  rows+=("$section|$slug|$tb|$tr|$code|$note")
+  rows+=("$section|$slug|$tb|$tr|$code|$page_col|$note")
 done
 
 if [[ $(git -C "$root" status --porcelain --untracked-files=all 2>/dev/null) != "$status_before" ||
@@ -147,11 +159,12 @@ if [[ $(git -C "$root" status --porcelain --untracked-files=all 2>/dev/null) != 
   failed=$((failed + 1))
 fi
 
-printf '\n%-8s %-16s %9s %9s %5s  %s\n' chapter program build_s run_s exit note
-printf '%-8s %-16s %9s %9s %5s  %s\n' ------- ------- ------- ----- ---- ----
+# exit: the program's at its defaults; page: the page's commands that ran, or how many failed.
+printf '\n%-8s %-16s %9s %9s %5s %-11s  %s\n' chapter program build_s run_s exit page note
+printf '%-8s %-16s %9s %9s %5s %-11s  %s\n' ------- ------- ------- ----- ---- ---- ----
 for r in "${rows[@]}"; do
-  IFS='|' read -r c p b t e n <<<"$r"
-  printf '%-8s %-16s %9s %9s %5s  %s\n' "$c" "$p" "$b" "$t" "$e" "$n"
+  IFS='|' read -r c p b t e g n <<<"$r"
+  printf '%-8s %-16s %9s %9s %5s %-11s  %s\n' "$c" "$p" "$b" "$t" "$e" "$g" "$n"
 done
 echo
 echo "summary: ${#folders[@]} chapters: $ok ran, $failed failed, $skipped skipped, $slow over $limit s;" \

@@ -6,7 +6,7 @@ a test that was renamed) sends a student looking for nothing.
 
 Read: the tracked book pages, READMEs and sources. A name is a path or a bare file name ending in
 .hpp, .cpp, .cl, .py, .sh or .cmake. In C++ and OpenCL files only comments and #include "..." lines
-count (elsewhere a member access can look like a file name), in Python files the docstring and comments, and in pages the C++ blocks do not. A path must exist relative
+count (elsewhere a member access can look like a file name), in Python and shell files the docstring and comments, and in pages the C++ blocks do not. A path must exist relative
 to the root, the naming file's folder, include/ or include/zraka/; a bare name must be the name of some tracked file. Not checked: names in <...> (system
 headers: the compiler checks them), names after $ or } (shell and CMake variables) or * (globs), build outputs
 (CMakeFiles/, build/), placeholders written in capitals (test_X.cpp, FOLDER/NAME.hpp) and the few
@@ -50,6 +50,8 @@ def lines_to_read(path, text):
         except (SyntaxError, tokenize.TokenError):
             return text.splitlines()
         return doc.splitlines() + comments
+    if path.suffix == '.sh':  # comments only; the commands' strings are data (self-tests make up trees)
+        return [m.group(1) for m in re.finditer(r'(?:^|\s)(#[^\n]*)', text) if not m.group(1).startswith('#!')]
     if path.suffix not in CODE:
         return text.splitlines()
     out = []

@@ -11,7 +11,8 @@ comparisons: bench/time_to_error's --mitsuba-variants.)
 The scene comes as the JSON that `pathtrace --export` writes: spheres, quads (boxes are six
 quads), triangles (meshes are flattened into them), point lights, materials, a pinhole camera,
 the environment, the image size and the maximum number of bounces. What maps one to one:
-  lambertian -> diffuse;  metal with fuzz 0 -> conductor 'none' scaled by the albedo (a mirror);
+  lambertian -> twosided diffuse (zraka's Lambertian reflects on both sides; Mitsuba's diffuse
+  alone is black from behind);  metal with fuzz 0 -> conductor 'none' scaled by the albedo (a mirror);
   dielectric -> dielectric (int_ior = ior, ext_ior = 1);  emitter -> black diffuse + area
   emitter (one-sided, like zraka's default);  point light -> point;  background -> constant.
   rough_conductor -> roughconductor, distribution ggx, alpha = zraka's alpha (not squared), eta
@@ -108,8 +109,12 @@ def bsdf_of(m, index, mi=None, np=None):
         if m["checker"]:
             raise ValueError(f"material {index}: checker textures have no exact Mitsuba counterpart")
         if m.get("texture"):
-            return {"type": "diffuse", "reflectance": bitmap_of(m["texture"], mi, np)}
-        return {"type": "diffuse", "reflectance": rgb([0, 0, 0] if kind == "emitter" else m["albedo"])}
+            diffuse = {"type": "diffuse", "reflectance": bitmap_of(m["texture"], mi, np)}
+        else:
+            diffuse = {"type": "diffuse", "reflectance": rgb([0, 0, 0] if kind == "emitter" else m["albedo"])}
+        # zraka's Lambertian reflects on both sides of a surface (a quad facing away from the
+        # camera is lit the same), Mitsuba's diffuse on its front only: twosided makes them one.
+        return {"type": "twosided", "bsdf": diffuse}
     if kind == "metal":
         if m["fuzz"] != 0:
             raise ValueError(f"material {index}: fuzzy metal (fuzz {m['fuzz']}) has no Mitsuba counterpart")

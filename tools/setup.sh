@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages zraka needs, and does nothing when they are all present.
+# It covers every test and every command a page shows (tools/course_flow.sh runs those): the
+# pages use no profiler (a user's perf needs kernel.perf_event_paranoid <= 2, which Debian's own
+# kernels do not set by default, and a VM may have no counters): they time with the shell's `time`.
 # Usage: bash tools/setup.sh [--extras]   (--extras adds Embree for the BVH benchmark, python3-venv for tools/mitsuba-setup.sh and LLVM 19 for Mitsuba's llvm_ad_rgb)
 set -euo pipefail
 

@@ -78,9 +78,17 @@ inline double bonferroni_level(double alpha, int tests) { return alpha / tests; 
 struct chi_square_result {
   double statistic = 0;
   int dof = 0;           // pooled bins - 1 (the total count is fixed)
-  double p_value = 1;    // 0 when a sample fell where the pdf is zero
+  double p_value = 1;    // 0 when a sample fell where the pdf is zero, or the pdf's mass is > 1
   int bins = 0;          // bins after pooling
-  long impossible = 0;   // samples observed in bins with zero expected count
+  long impossible = 0;   // samples observed in bins with zero expected count (with the extra bin's)
+  // Filled by chi_square_2d (and chi_square_directions):
+  long samples = 0;            // draws of the sampler
+  long rejected = 0;           // draws that returned no sample (none, a zero or non-finite vector)
+  long outside = 0;            // samples that fell outside the grid
+  double pdf_mass = 0;         // the integral of the pdf over the grid
+  double quadrature_error = 0; // its estimated error (all bins)
+  int unresolved_bins = 0;     // bins whose integral missed its tolerance within the budget
+  long impossible_outside = 0; // rejected or outside samples, where the pdf leaves no mass
 };
 
 // Bins with expected < min_expected are pooled, smallest first, into groups that each expect at
@@ -171,25 +179,180 @@ std::vector<double> expected_counts(const grid2& g, Density&& density, double n,
   return e;
 }
 
+// n times the integral of density(x, y) over each bin, fine enough for the test. A cell's
+// integral is the k x k midpoint rule (k = sub/2); its error is estimated by splitting it in two
+// along x and along y. Each bin is refined (the cell with the largest error estimate split along
+// the axis that changed more) until it is within 0.05 sqrt(E + 1) expected samples of its own
+// noise, so that X^2 moves by much less than its spread. Then the bins with the largest errors
+// are refined further, because the extra bin of chi_square_2d expects n minus the sum of the
+// others and collects their errors (GGX at alpha 0.001: 70 samples in a bin that expects none,
+// X^2 = 106 for 32 dof): until the errors of all bins together, d, add at most s = 5 % of X^2's
+// spread sqrt(2 m) to it (m: the bins expecting 5 or more), d <= max(s, sqrt(s rest)), s >= 0.5.
+// A lobe narrower than the first points (alpha = 0.001 is 1e-6 wide in cos theta) is invisible
+// to the estimate, so the samples guide it too: a cell holding 16 or more samples, 90 % of them
+// in one half along an axis, is split there first. That only chooses where to look closer: a
+// sampler cannot make a wrong pdf's integral look right, and mass that the pdf puts where no
+// sample goes is still found where the pdf varies (else it is left to the extra bin).
+// points[b] holds the samples that fell in bin b (reordered here); it may be empty.
+struct adaptive_counts {
+  std::vector<double> expected;
+  double error = 0;       // the sum of the bins' error estimates, in samples
+  int unresolved = 0;     // bins left above their own tolerance when the budget ran out
+};
+template <class Density>
+adaptive_counts expected_counts_adaptive(const grid2& g, Density&& density, double n, int sub,
+                                         std::vector<std::vector<vec2>>& points,
+                                         int max_cells_per_bin = 512) {
+  const int k = std::max(1, sub / 2);
+  auto midpoint = [&](double x0, double x1, double y0, double y1) {
+    const double dx = (x1 - x0) / k, dy = (y1 - y0) / k;
+    double sum = 0;
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i < k; ++i) sum += double(density(x0 + (i + 0.5) * dx, y0 + (j + 0.5) * dy));
+    return sum * dx * dy;
+  };
+  struct cell {
+    double x0, x1, y0, y1;
+    double value;            // k x k midpoint rule over the cell
+    double sx[2], sy[2];     // the same over its halves along x and along y
+    std::size_t begin, end;  // its samples in points[b]
+    double estimate() const { return 0.5 * (sx[0] + sx[1] + sy[0] + sy[1]); }
+    double error_x() const { return std::abs(sx[0] + sx[1] - value); }
+    double error_y() const { return std::abs(sy[0] + sy[1] - value); }
+    double error() const { return std::max(error_x(), error_y()); }
+  };
+  auto make = [&](double x0, double x1, double y0, double y1, double value, std::size_t b,
+                  std::size_t e) {
+    cell c{x0, x1, y0, y1, value, {0, 0}, {0, 0}, b, e};
+    const double xm = 0.5 * (x0 + x1), ym = 0.5 * (y0 + y1);
+    c.sx[0] = midpoint(x0, xm, y0, y1), c.sx[1] = midpoint(xm, x1, y0, y1);
+    c.sy[0] = midpoint(x0, x1, y0, ym), c.sy[1] = midpoint(x0, x1, ym, y1);
+    return c;
+  };
+  const std::size_t nb = std::size_t(g.size());
+  const double bw = (g.x1 - g.x0) / g.nx, bh = (g.y1 - g.y0) / g.ny;
+  points.resize(nb);
+  std::vector<std::vector<cell>> cells(nb);
+  std::vector<double> total(nb, 0.0), error(nb, 0.0);
+  auto split = [&](std::size_t b, std::size_t at, int axis) {
+    std::vector<vec2>& pts = points[b];
+    const cell c = cells[b][at];
+    const double xm = 0.5 * (c.x0 + c.x1), ym = 0.5 * (c.y0 + c.y1);
+    const auto mid = std::partition(pts.begin() + std::ptrdiff_t(c.begin), pts.begin() + std::ptrdiff_t(c.end),
+                                    [&](const vec2& p) { return axis == 0 ? p.x < xm : p.y < ym; });
+    const std::size_t m = std::size_t(mid - pts.begin());
+    if (axis == 0) {
+      cells[b][at] = make(c.x0, xm, c.y0, c.y1, c.sx[0], c.begin, m);
+      cells[b].push_back(make(xm, c.x1, c.y0, c.y1, c.sx[1], m, c.end));
+    } else {
+      cells[b][at] = make(c.x0, c.x1, c.y0, ym, c.sy[0], c.begin, m);
+      cells[b].push_back(make(c.x0, c.x1, ym, c.y1, c.sy[1], m, c.end));
+    }
+  };
+  // Sums the bin's cells; returns its least sure cell.
+  auto tally = [&](std::size_t b) {
+    std::size_t worst = 0;
+    total[b] = error[b] = 0;
+    for (std::size_t i = 0; i < cells[b].size(); ++i) {
+      total[b] += cells[b][i].estimate();
+      error[b] += cells[b][i].error();
+      if (cells[b][i].error() > cells[b][worst].error()) worst = i;
+    }
+    return worst;
+  };
+  auto refine_worst = [&](std::size_t b, std::size_t worst) {
+    const cell& c = cells[b][worst];
+    split(b, worst, c.error_x() >= c.error_y() ? 0 : 1);
+  };
+  // The axis (0: x, 1: y) along which 90 % of a cell's samples lie in one half, or -1.
+  auto concentrated = [&](std::size_t b, const cell& c) {
+    const std::vector<vec2>& pts = points[b];
+    const std::size_t m = c.end - c.begin;
+    if (m < 16) return -1;
+    std::size_t low_x = 0, low_y = 0;
+    const double xm = 0.5 * (c.x0 + c.x1), ym = 0.5 * (c.y0 + c.y1);
+    for (std::size_t i = c.begin; i < c.end; ++i) low_x += pts[i].x < xm, low_y += pts[i].y < ym;
+    auto lopsided = [&](std::size_t low) { return std::max(low, m - low) * 10 >= m * 9; };
+    // no further than 1e-13 of the bin (a sampler that always returns one point)
+    const bool ax = c.x1 - c.x0 > 1e-13 * bw && lopsided(low_x);
+    const bool ay = c.y1 - c.y0 > 1e-13 * bh && lopsided(low_y);
+    if (ax && ay) return std::max(low_x, m - low_x) >= std::max(low_y, m - low_y) ? 0 : 1;
+    return ax ? 0 : ay ? 1 : -1;
+  };
+  adaptive_counts out;
+  for (std::size_t b = 0; b < nb; ++b) {
+    const double x0 = g.x0 + double(int(b) % g.nx) * bw, y0 = g.y0 + double(int(b) / g.nx) * bh;
+    cells[b].push_back(make(x0, x0 + bw, y0, y0 + bh, midpoint(x0, x0 + bw, y0, y0 + bh), 0, points[b].size()));
+    // First where the samples crowd, then where the estimate is least sure.
+    for (std::size_t i = 0; i < cells[b].size() && int(cells[b].size()) < max_cells_per_bin;) {
+      const int axis = concentrated(b, cells[b][i]);
+      if (axis < 0) ++i;
+      else split(b, i, axis);
+    }
+    auto unsure = [&] { return error[b] * n > 0.05 * std::sqrt(std::max(0.0, total[b]) * n + 1); };
+    for (std::size_t worst = tally(b); unsure() && int(cells[b].size()) < max_cells_per_bin; worst = tally(b))
+      refine_worst(b, worst);
+  }
+  // All bins together, for the extra bin: refine the bin with the largest error.
+  double sum = 0, sum_error = 0;
+  for (std::size_t b = 0; b < nb; ++b) sum += total[b], sum_error += error[b];
+  double m = 0;
+  for (std::size_t b = 0; b < nb; ++b) m += total[b] * n >= 5;
+  const double spread = std::max(0.5, 0.05 * std::sqrt(2 * m));
+  for (long budget = 8L * long(nb) + 4096; budget > 0; --budget) {
+    const double rest = std::max(0.0, 1 - sum) * n;
+    if (!(sum_error * n > std::max(spread, std::sqrt(spread * rest)))) break;
+    const std::size_t b = std::size_t(std::max_element(error.begin(), error.end()) - error.begin());
+    sum -= total[b], sum_error -= error[b];
+    std::size_t worst = 0;
+    for (std::size_t i = 1; i < cells[b].size(); ++i)
+      if (cells[b][i].error() > cells[b][worst].error()) worst = i;
+    refine_worst(b, worst);
+    tally(b);
+    sum += total[b], sum_error += error[b];
+  }
+  out.expected.resize(nb);
+  for (std::size_t b = 0; b < nb; ++b) {
+    out.expected[b] = total[b] * n, out.error += error[b] * n;
+    out.unresolved += error[b] * n > 0.05 * std::sqrt(std::max(0.0, total[b]) * n + 1);
+  }
+  return out;
+}
+
 // The test on a 2D domain. sample() returns std::optional<vec2> (none: the sampler rejected);
 // samples outside the grid and rejections each go to one extra bin, which expects whatever
 // probability the pdf leaves outside the grid, so a pdf that integrates to less than one over
 // the grid (a sub-probability density, like a BRDF lobe cut by the horizon) is tested exactly.
+// The pdf is integrated over each bin by expected_counts_adaptive, starting from sub x sub points.
+// A pdf whose integral over the grid exceeds 1 by more than the quadrature's error is rejected
+// (p = 0): no sampler can follow it.
 template <class Sample, class Density>
 chi_square_result chi_square_2d(Sample&& sample, Density&& density, long n, const grid2& g,
                                 int sub = 8, double min_expected = 5) {
   std::vector<double> observed(std::size_t(g.size()) + 1, 0.0);
+  std::vector<std::vector<vec2>> points(std::size_t(g.size()));
+  long rejected = 0, outside = 0;
   for (long k = 0; k < n; ++k) {
     const std::optional<vec2> p = sample();
     const auto b = p ? g.bin(p->x, p->y) : std::nullopt;
+    if (!p) ++rejected;
+    else if (!b) ++outside;
+    else points[std::size_t(*b)].push_back(*p);
     observed[b ? std::size_t(*b) : observed.size() - 1] += 1;
   }
-  std::vector<double> expected = expected_counts(g, density, double(n), sub);
+  adaptive_counts counts = expected_counts_adaptive(g, density, double(n), sub, points);
+  std::vector<double>& expected = counts.expected;
   double inside = 0;
   for (double e : expected) inside += e;
   const double rest = double(n) - inside;
-  expected.push_back(rest > 1e-6 * double(n) ? rest : 0.0);  // below: quadrature error, not mass
-  return chi_square_test(observed, expected, min_expected);
+  expected.push_back(rest > 1e-6 * double(n) ? rest : 0.0);  // below: rounding, not mass
+  const long impossible_outside = expected.back() > 0 ? 0 : long(observed.back());
+  chi_square_result r = chi_square_test(observed, expected, min_expected);
+  r.samples = n, r.rejected = rejected, r.outside = outside;
+  r.pdf_mass = inside / double(n), r.quadrature_error = counts.error / double(n);
+  r.unresolved_bins = counts.unresolved, r.impossible_outside = impossible_outside;
+  if (-rest > counts.error + 1e-3 * double(n)) r.p_value = 0;  // the pdf integrates to more than 1
+  return r;
 }
 
 // The test for directions in a local frame (+z up), binned over (cos theta, phi).

@@ -62,8 +62,12 @@ inline std::filesystem::path output_folder() { return detail::output_folder_in(r
 
 // The file an output name stands for: a bare file name ("x.png") goes to output_folder(), which
 // is made if needed; a name with a folder ("renders/x.png", "/tmp/x.png") is taken as given.
+// The name is checked (check_output_name: not empty, its folder exists and can be written), so
+// a program that calls this before rendering fails before it writes anything.
 inline std::filesystem::path output_file(const std::filesystem::path& name) {
-  return detail::output_file_under(name, resource_root());
+  const std::filesystem::path file = detail::output_file_under(name, resource_root());
+  check_output_name(file);
+  return file;
 }
 
 // An input that an earlier run wrote (e.g. --reference ref.pfm): as given when it exists there,
@@ -216,7 +220,11 @@ ZRAKA_COMPILED_FN std::optional<int> program_options::parse_shared(int argc, cha
     if (has(taken_, take::threads)) threads = resolve_threads(threads);
     if (has(taken_, take::sampler)) parse_sampler(sampler);  // an unknown name: the error lists the known ones
     if (has(taken_, take::out)) {
-      check_output_name(out);
+      try {
+        check_output_name(out);
+      } catch (const error& e) {
+        throw error(std::string(e.what()) + " (the value of --out)");
+      }
       const std::string ext = std::filesystem::path(out).extension().string();
       bool known = false;
       std::string list;
@@ -225,7 +233,11 @@ ZRAKA_COMPILED_FN std::optional<int> program_options::parse_shared(int argc, cha
     }
     if (!window_screenshot.empty()) {
       if (!window) throw error("--window-screenshot needs --window");
-      check_output_name(window_screenshot);
+      try {
+        check_output_name(window_screenshot);
+      } catch (const error& e) {
+        throw error(std::string(e.what()) + " (the value of --window-screenshot)");
+      }
       if (std::filesystem::path(window_screenshot).extension() != ".png")
         throw error("--window-screenshot " + window_screenshot + ": must be a .png file");
     }

@@ -195,13 +195,14 @@ ZRAKA_REALTIME_MAIN_FN int realtime_main_in(int argc, char** argv, const scene_r
   opt.scene_settings = true;  // a scene file's width, height, spp, max_depth and seed (else below)
   opt.min_depth = 0;
   std::string screenshot, kernel_file = "kernels/pathtrace.cl", method = "mis";
-  std::optional<int> frames_opt;
-  int spf = 1, device_index = 0, rr_depth = 3;
+  std::optional<int> frames_opt, spf_opt;
+  int device_index = 0, rr_depth = 3;
   bool headless = false, weak_seed = false, all_features = false;
   zraka::cli_app& app = opt.app;
   app.add_option("--frames", frames_opt, "frames to render, then stop (window mode: 0 = until closed)")
       ->default_str("window: 0; headless: --spp's worth");
-  app.add_option("--spp-per-frame", spf, "samples per pixel added by each frame");
+  app.add_option("--spp-per-frame", spf_opt, "samples per pixel added by each frame")
+      ->default_str("window: 1; headless: from the image size");
   app.add_option("--rr-depth", rr_depth, "Russian roulette from this many bounces on");
   app.add_option("--integrator", method, "naive, nee or mis (path.hpp's methods)");
   app.add_option("--device", device_index, "OpenCL device number (chapter 3.3's --list)");
@@ -219,6 +220,7 @@ ZRAKA_REALTIME_MAIN_FN int realtime_main_in(int argc, char** argv, const scene_r
     const stopwatch clock;
     // A scene file brings its own settings; the built-in scenes use this program's: 512x512,
     // depth 8, seed 1, and headless 8 frames' worth of samples.
+    int spf = spf_opt.value_or(1);
     if (spf < 1 || spf > 4096) throw error("--spp-per-frame must be in 1..4096, got " + std::to_string(spf));
     loaded_scene loaded = load_scene_argument_in(opt.scene, root, registry);  // the course's kinds too
     scene& sc = loaded.sc;
@@ -252,8 +254,19 @@ ZRAKA_REALTIME_MAIN_FN int realtime_main_in(int argc, char** argv, const scene_r
     if (headless && frames_opt && frames == 0) throw error("--frames must be positive with --headless");
     // Headless: the samples per pixel in all, in frames of spf (the last one may be smaller).
     int total_spp = frames * spf;
+    std::string spf_note;
     if (headless && !frames_opt) {
       total_spp = opt.spp;
+      // No window to keep responsive: a frame of about 4 M paths (16 spp at 512x512) costs its
+      // launch and wait once, not per sample (one sample a frame took twice as long on PoCL).
+      // A pixel's sum adds its samples one by one alike in frames of one and in a single frame,
+      // so the default (8 spp, one frame) is the image of before bit for bit; frames of 2 or
+      // more group the float sums differently, which changes the last bits.
+      if (!spf_opt) {
+        constexpr double paths_per_frame = 1 << 22;
+        spf = int(std::clamp(std::floor(paths_per_frame / (double(width) * height)), 1.0, double(total_spp)));
+        spf_note = " (chosen: about 4 M paths a frame; --spp-per-frame sets it)";
+      }
       frames = (total_spp + spf - 1) / spf;
     }
     path_options po;
@@ -294,8 +307,8 @@ ZRAKA_REALTIME_MAIN_FN int realtime_main_in(int argc, char** argv, const scene_r
     std::printf("kernel options: %s\n", renderer.options().c_str());
     std::printf("kernel build: %.2f s (PoCL caches binaries; POCL_KERNEL_CACHE=0 while editing kernels)\n",
                 renderer.build_seconds());
-    std::printf("image %dx%d, %d spp per frame, depth %d, integrator %s, Russian roulette from bounce %d, "
-                "seed %llu%s\n", width, height, spf, depth, name(po.method), rr_depth,
+    std::printf("image %dx%d, %d spp per frame%s, depth %d, integrator %s, Russian roulette from bounce %d, "
+                "seed %llu%s\n", width, height, spf, spf_note.c_str(), depth, name(po.method), rr_depth,
                 static_cast<unsigned long long>(seed), weak_seed ? ", weak per-pixel seed (errata C7)" : "");
 
     if (headless) {

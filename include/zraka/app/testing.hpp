@@ -95,30 +95,53 @@ template <class T, class Check> result across_scales(const std::vector<T>& scale
 
 // ---------------------------------------------------------------- chi-square (chi_square.hpp)
 // A chi-square result judged at significance `level` (the probability of rejecting a correct
-// sampler; pass sidak_level(alpha, k) when a test file runs k of these).
+// sampler; pass sidak_level(alpha, k) when a test file runs k of these). The message says what is
+// wrong first: no samples at all, samples where the pdf is zero, a pdf whose integral is above
+// one; then the statistic, and where the samples that are not in the grid went.
 inline result judge(const chi_square_result& c, double level, const std::string& what) {
   result r;
-  r.ok = c.p_value >= level && c.impossible == 0;
-  r.message = what + ": X^2 = " + num(c.statistic) + " with " + std::to_string(c.dof) +
-              " dof, p = " + num(c.p_value) + " (reject below " + num(level) + ")";
-  if (c.impossible > 0)
-    r.message += "; " + std::to_string(c.impossible) + " sample(s) where the pdf is zero";
+  const bool too_much = c.pdf_mass > 1 + 1e-3 + c.quadrature_error;
+  r.ok = c.p_value >= level && c.impossible == 0 && !too_much && c.rejected < c.samples;
+  std::string why;
+  const long in_zero_bins = c.impossible - c.impossible_outside;
+  if (c.samples > 0 && c.rejected == c.samples)
+    why = "the sampler returned no sample in " + std::to_string(c.samples) +
+          " draws (each was none, a zero or a non-finite direction); ";
+  else if (too_much)
+    why = "the pdf integrates to " + num(c.pdf_mass) + " over the grid, more than 1; ";
+  else if (in_zero_bins > 0)
+    why = std::to_string(in_zero_bins) + " sample(s) fell in bins where the pdf is zero; ";
+  else if (c.impossible_outside > 0)
+    why = std::to_string(c.impossible_outside) +
+          " draw(s) rejected or outside the grid, although the pdf puts all its mass in the grid; ";
+  r.message = what + ": " + why + "X^2 = " + num(c.statistic) + " with " + std::to_string(c.dof) +
+              " dof, p = " + num(c.p_value) + " (reject below " + num(level) + "); pdf mass in the grid " +
+              num(c.pdf_mass) + " (quadrature error " + num(c.quadrature_error) + ")";
+  if (c.rejected > 0 || c.outside > 0)
+    r.message += "; of " + std::to_string(c.samples) + " draws " + std::to_string(c.rejected) +
+                 " rejected and " + std::to_string(c.outside) + " outside the grid, where the pdf expects " +
+                 num(std::max(0.0, 1 - c.pdf_mass) * double(c.samples));
+  if (c.unresolved_bins > 0)
+    r.message += "; " + std::to_string(c.unresolved_bins) +
+                 " bin(s) not integrated to tolerance (a finer grid or a larger sub helps)";
   return r;
 }
 
 // sample() returns a unit direction in the local frame (+z up) or an optional of one; pdf(w)
-// is per steradian. See chi_square_directions for the grid and the rejected-sample bin.
+// is per steradian. See chi_square_directions for the grid and the rejected-sample bin; each
+// bin's pdf is integrated adaptively from sub x sub points (chi_square.hpp,
+// expected_counts_adaptive), so narrow lobes (GGX from alpha = 0.001) need no special grid.
 template <class Sample, class Pdf>
 result directions_follow_pdf(Sample&& sample, Pdf&& pdf, long n, const grid2& g,
-                             double level = 1e-3) {
-  return judge(chi_square_directions(sample, pdf, n, g), level, "directions vs pdf");
+                             double level = 1e-3, int sub = 8) {
+  return judge(chi_square_directions(sample, pdf, n, g, sub), level, "directions vs pdf");
 }
 
 // The same for a 2D sampler returning std::optional<vec2> against a density on the grid.
 template <class Sample, class Density>
 result samples_follow_density(Sample&& sample, Density&& density, long n, const grid2& g,
-                              double level = 1e-3) {
-  return judge(chi_square_2d(sample, density, n, g), level, "samples vs density");
+                              double level = 1e-3, int sub = 8) {
+  return judge(chi_square_2d(sample, density, n, g, sub), level, "samples vs density");
 }
 
 // The integral of pdf(w) over the directions of the grid (the whole sphere by default), by the

@@ -9,7 +9,10 @@
 // target removes every such leftover whose process no longer runs.
 //
 // A name that cannot be what the user meant is refused: an empty name, a folder, or a name that
-// is only an extension (".png", what `--out ""` becomes once a program appends ".png").
+// is only an extension (".png", what `--out ""` becomes once a program appends ".png"); so is a
+// name whose folder does not exist or cannot be written. Programs check every output name this
+// way before they start to render (output_file, program_options), so that a failed run leaves
+// no output behind.
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
 
@@ -136,6 +139,14 @@ ZRAKA_COMPILED_FN void check_output_name(const std::filesystem::path& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw error("cannot write '" + path.string() + "': it is a folder");
+  const std::filesystem::path folder = path.parent_path();
+  if (!folder.empty() && !std::filesystem::exists(folder, ec))
+    throw error("cannot write '" + path.string() + "': the folder '" + folder.string() + "' does not exist");
+  if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
+    throw error("cannot write '" + path.string() + "': '" + folder.string() + "' is not a folder");
+  if (::access(folder.empty() ? "." : folder.c_str(), W_OK) != 0)
+    throw error("cannot write '" + path.string() + "': the folder '" + (folder.empty() ? "." : folder.string()) +
+                "' is not writable (" + std::strerror(errno) + ")");
 }
 
 ZRAKA_COMPILED_FN void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
