@@ -32,7 +32,7 @@
 #include <zraka/image/image.hpp>
 #include <zraka/scene/lights.hpp>
 #include <zraka/materials/material.hpp>
-#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/path_kit.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/scene/scene.hpp>
@@ -118,8 +118,6 @@ template <class T> class bdpt_t {
       throw error("bdpt: --strategies must be from 0 to max_depth + 1 = " + std::to_string(opt.max_depth + 1));
     if ((opt.only_s >= 0) != (opt.only_t >= 0) || (opt.only_t >= 0 && opt.only_t < 1))
       throw error("bdpt: a single strategy needs s >= 0 and t >= 1");
-    popt_.max_depth = opt.max_depth;
-    popt_.rr_depth = opt.rr_depth;
   }
   const light_set_t<T>& lights() const { return lights_; }
   const camera_importance_t<T>& eye() const { return eye_; }
@@ -233,7 +231,7 @@ template <class T> class bdpt_t {
       prev.pdf_rev = to_area(pdf_rev_w, cur, prev);
       pdf_w = s->specular ? T(0) : s->pdf;
       beta *= s->weight;
-      if (!survives_roulette(beta, bounce, popt_, g)) return;
+      if (!survives_roulette(beta, bounce, opt_.rr_depth, g)) return;
       r = spawn_ray(sh.h, s->direction);
     }
   }
@@ -399,7 +397,6 @@ template <class T> class bdpt_t {
   typename camera_t<T>::prepared cam_;
   camera_importance_t<T> eye_;
   bdpt_options opt_;
-  path_options popt_;
   // The subpaths of the sample being made (one bdpt_t per thread: see render_bdpt).
   mutable std::vector<vertex> camera_, light_;
   mutable std::vector<T> cf_, cr_, lf_, lr_;  // mis_weight's copies of the densities

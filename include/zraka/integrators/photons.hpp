@@ -7,7 +7,7 @@
 // scatters with the core's materials (scatter() in material.hpp: the weight f |cos| / p is what
 // the flux is multiplied by), specular kinds included; it is stored only where the material has a
 // density (has_density: a Lambert, Phong or custom surface), because a density estimate needs a
-// BRDF to evaluate. Russian roulette is the path loop's (survives_roulette). Glass needs no
+// BRDF to evaluate. Russian roulette is the path loop's (survives_roulette, path_kit.hpp). Glass needs no
 // eta^2 factor here: flux, unlike radiance, is not compressed across a boundary.
 //
 // Photons of a pass are traced in fixed chunks; photon i of pass k has its own stream
@@ -17,7 +17,7 @@
 #include <zraka/core/error.hpp>
 #include <zraka/scene/lights.hpp>
 #include <zraka/materials/material.hpp>
-#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/path_kit.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/scene/scene.hpp>
@@ -87,8 +87,6 @@ rgb trace_photon(const scene_t<T>& sc, const light_set_t<T>& lights, rng& g, con
   if (!is_finite(Phi)) return rgb(0);
   ray_t<T> r{e->delta_position ? e->point : offset_origin(e->point, e->p_error, e->normal, e->direction),
              e->direction};
-  path_options roulette;
-  roulette.rr_depth = opt.rr_depth;
   rgb beta(1);
   bool all_specular = true;
   for (int bounce = 0; bounce <= opt.max_depth; ++bounce) {
@@ -102,7 +100,7 @@ rgb trace_photon(const scene_t<T>& sc, const light_set_t<T>& lights, rng& g, con
     if (!s) break;  // absorbed (or an emitter, which does not reflect)
     beta *= s->weight;
     all_specular = all_specular && s->specular;
-    if (!survives_roulette(beta, bounce, roulette, g)) break;
+    if (!survives_roulette(beta, bounce, opt.rr_depth, g)) break;
     r = spawn_ray(sh.h, s->direction);
   }
   return Phi;
