@@ -10,11 +10,12 @@
 // BRDF to evaluate. Russian roulette is the path loop's (survives_roulette, path_kit.hpp). Glass needs no
 // eta^2 factor here: flux, unlike radiance, is not compressed across a boundary.
 //
-// Photons of a pass are traced in fixed chunks; photon i of pass k has its own stream
-// rng(seed, i, photon_stream + k), and the chunks are merged in chunk order, so the photons (and
-// everything made from them) are the same for any number of threads.
+// Photons of a pass are traced in fixed chunks, parallel_for's items (parallel.hpp); photon i of
+// pass k has its own stream rng(seed, i, photon_stream + k), and the chunks are merged in chunk
+// order, so the photons (and everything made from them) are the same for any number of threads.
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/parallel.hpp>
 #include <zraka/scene/lights.hpp>
 #include <zraka/materials/material.hpp>
 #include <zraka/integrators/path_kit.hpp>
@@ -24,12 +25,9 @@
 #include <zraka/scene/scene_query.hpp>
 #include <zraka/geometry/spawn.hpp>
 
-#include <atomic>
+#include <algorithm>
 #include <cstdint>
-#include <exception>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace zraka {
@@ -106,29 +104,6 @@ rgb trace_photon(const scene_t<T>& sc, const light_set_t<T>& lights, rng& g, con
   return Phi;
 }
 // [end]
-
-// fn(i) for i in [0, n) on `threads` threads, work handed out from a shared counter. The caller
-// makes the result independent of the order (each i writes its own slot).
-template <class Fn> void parallel_for(std::size_t n, int threads, Fn&& fn) {
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  auto worker = [&] {
-    try {
-      for (std::size_t i = next++; i < n; i = next++) fn(i);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
-      next = n;
-    }
-  };
-  const int t = resolve_threads(threads);
-  std::vector<std::thread> pool;
-  for (int i = 1; i < t && std::size_t(i) < n; ++i) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
-  if (failure) std::rethrow_exception(failure);
-}
 
 template <class T> struct photon_pass_t {
   std::vector<photon_t<T>> photons;  // in photon order
