@@ -50,7 +50,7 @@ visible_point_t<T> find_visible_point(const scene_t<T>& sc, const light_set_t<T>
       // f Le / pdf, divided as this chapter's images were made (estimate() multiplies by 1 / pdf:
       // the same value, rounded differently)
       if (const auto ne = next_event(lights, vp.sh.h, surface_vertex_t<T>{m, vp.sh.h, wo}, false, -1, g, shadow, rays))
-        vp.direct += vp.beta * ne->at.f * ne->light.Le / float(ne->light.pdf);
+        vp.direct += vp.beta * ne->at.f * ne->Le / float(ne->pdf);
       vp.found = true;
       vp.wo = wo;
       return vp;
