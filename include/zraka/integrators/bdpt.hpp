@@ -28,6 +28,7 @@
 // films are summed in band order (in_order), so --seed gives the same bits for any thread count.
 #include <zraka/cameras/camera_importance.hpp>
 #include <zraka/core/compiled.hpp>
+#include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/core/parallel.hpp>
 #include <zraka/image/image.hpp>
@@ -51,6 +52,9 @@
 namespace zraka {
 
 enum class mis_heuristic { power, balance };
+inline constexpr enum_name<mis_heuristic> mis_heuristic_names[] = {{mis_heuristic::power, "power"},
+                                                                   {mis_heuristic::balance, "balance"}};
+constexpr std::span<const enum_name<mis_heuristic>> enum_names(mis_heuristic) { return mis_heuristic_names; }  // enum_names.hpp
 
 struct bdpt_options {
   int max_depth = 8;  // bounces, as path_options::max_depth

@@ -28,6 +28,7 @@
 // The OpenCL kernel (kernels/pathtrace.cl) mirrors this loop line for line (without media:
 // gpu_scene.hpp refuses them).
 #include <zraka/core/compiled.hpp>
+#include <zraka/core/enum_names.hpp>
 #include <zraka/scene/lights.hpp>
 #include <zraka/materials/material.hpp>
 #include <zraka/integrators/next_event.hpp>
@@ -48,21 +49,10 @@
 namespace zraka {
 
 enum class integrator { naive, nee, mis };
-
-inline const char* name(integrator i) {
-  switch (i) {
-    case integrator::naive: return "naive";
-    case integrator::nee: return "nee";
-    case integrator::mis: return "mis";
-  }
-  return "?";
-}
-
-inline integrator parse_integrator(std::string_view s) {
-  for (integrator i : {integrator::naive, integrator::nee, integrator::mis})
-    if (s == name(i)) return i;
-  throw error("unknown integrator '" + std::string(s) + "' (naive, nee, mis)");
-}
+inline constexpr enum_name<integrator> integrator_names[] = {
+    {integrator::naive, "naive"}, {integrator::nee, "nee"}, {integrator::mis, "mis"}};
+constexpr std::span<const enum_name<integrator>> enum_names(integrator) { return integrator_names; }  // enum_names.hpp
+inline integrator parse_integrator(std::string_view s) { return parse_enum<integrator>(s, "integrator"); }
 
 struct path_options {
   integrator method = integrator::mis;
