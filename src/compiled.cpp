@@ -18,6 +18,7 @@
 #include <zraka/scene/named_scenes.hpp>
 #include <zraka/io/obj_file.hpp>
 #include <zraka/app/program_options.hpp>
+#include <zraka/core/parallel.hpp>
 #include <zraka/integrators/progressive.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/scene/scene_registry.hpp>

@@ -85,11 +85,7 @@ int main(int argc, char** argv) {
   const std::string& out = cli.out;
 
   return guarded([&] {
-    triangle_method method = triangle_method::watertight;
-    bool known = false;
-    for (const triangle_method m : triangle_methods)
-      if (name(m) == method_name) method = m, known = true;
-    if (!known) throw error("--method must be edge, mt or watertight, got '" + method_name + "'");
+    const triangle_method method = parse_enum<triangle_method>(method_name, "--method");
     const std::string ext = std::filesystem::path(out).extension().string();
     if (ext != ".png" && ext != ".ppm" && ext != ".pfm" && ext != ".exr")
       throw error("unknown image type '" + ext + "' for " + out + " (use .png, .ppm, .pfm or .exr)");

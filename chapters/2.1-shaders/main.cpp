@@ -9,6 +9,7 @@
 // black pixels against the area the spheres cover on the image plane.
 #include <zraka/cameras/camera.hpp>
 #include <zraka/app/program_options.hpp>
+#include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image_io.hpp>
 #include <zraka/integrators/render.hpp>
@@ -46,6 +47,11 @@ rgb normal_shader(const std::vector<sphere>& objects, const ray& r) {
   return found ? rgb(0.5 * (nearest.normal + 1.0)) : white;
 }
 
+// --shader's names, read by parse_enum (enum_names.hpp).
+enum class shader_kind { mask, normal };
+constexpr enum_name<shader_kind> shader_kind_names[] = {{shader_kind::mask, "mask"}, {shader_kind::normal, "normal"}};
+constexpr std::span<const enum_name<shader_kind>> enum_names(shader_kind) { return shader_kind_names; }
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -62,7 +68,7 @@ int main(int argc, char** argv) {
 
   return guarded([&] {
     image::check_size(width, height);
-    if (shader != "mask" && shader != "normal") throw error("--shader must be mask or normal, got '" + shader + "'");
+    const shader_kind kind = parse_enum<shader_kind>(shader, "--shader");
     const int threads = resolve_threads(ro.threads);
     // The scene every pixel gets a copy of: three spheres, one partly behind another.
     const std::vector<sphere> objects = {{{-1.2, 0, -5}, 1.0}, {{1.0, 0.3, -6}, 1.3}, {{0.2, -0.6, -3.5}, 0.4}};
@@ -80,7 +86,7 @@ int main(int argc, char** argv) {
       o.threads = thread_count;
       const render_stats st = render(img, 1, 0, [&](sample_context& c) {
         const ray r = cam.generate((c.x + 0.5) / width, (c.y + 0.5) / height);
-        return shader == "mask" ? mask_shader(objects, r) : normal_shader(objects, r);
+        return kind == shader_kind::mask ? mask_shader(objects, r) : normal_shader(objects, r);
       }, o);
       return std::pair{img, st};
     };

@@ -13,6 +13,7 @@
 // rendered at 1, 4, 16, 64 spp, timed, and compared with a stratified light-sampling reference
 // rendered in the same run (with another seed, so its noise is independent).
 #include <zraka/sampling/convergence.hpp>
+#include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
@@ -49,15 +50,9 @@ scene lit_scene(int width, int height) {
 }
 
 enum class strategy { uniform, cosine, light, mixture };
-const char* name(strategy s) {
-  switch (s) {
-    case strategy::uniform: return "uniform";
-    case strategy::cosine: return "cosine";
-    case strategy::light: return "light";
-    case strategy::mixture: return "mixture";
-  }
-  return "?";
-}
+constexpr enum_name<strategy> strategy_names[] = {
+    {strategy::uniform, "uniform"}, {strategy::cosine, "cosine"}, {strategy::light, "light"}, {strategy::mixture, "mixture"}};
+constexpr std::span<const enum_name<strategy>> enum_names(strategy) { return strategy_names; }  // name(s): enum_names.hpp
 
 // [listing direct]
 // L_o at the first hit of camera ray r, from one direction sampled by strategy s. u_light and

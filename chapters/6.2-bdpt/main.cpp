@@ -65,8 +65,7 @@ int main(int argc, char** argv) {
 
   return guarded([&] {
     if (cli.spp & (cli.spp - 1)) throw error("--spp must be a power of 2, got " + std::to_string(cli.spp));
-    if (heuristic != "power" && heuristic != "balance")
-      throw error("--heuristic must be power or balance, got '" + heuristic + "'");
+    const mis_heuristic mis_rule = parse_enum<mis_heuristic>(heuristic, "--heuristic");
     if (strategies < 0 || strategies > cli.depth + 1)
       throw error("--strategies must be from 0 to depth + 1 = " + std::to_string(cli.depth + 1));
     scene sc = load_scene_argument(cli.scene).sc;
@@ -79,7 +78,7 @@ int main(int argc, char** argv) {
     po.max_depth = cli.depth;
     bdpt_options bo;
     bo.max_depth = cli.depth;
-    bo.heuristic = heuristic == "power" ? mis_heuristic::power : mis_heuristic::balance;
+    bo.heuristic = mis_rule;
     bo.threads = ro.threads;
     std::printf("scene %s, %dx%d, at most %d bounces; %s\n%s\n", cli.scene.c_str(), W, H, cli.depth,
                 describe_built(sc).c_str(), light_set(sc).describe().c_str());

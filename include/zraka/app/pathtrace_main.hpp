@@ -108,9 +108,7 @@ ZRAKA_PATHTRACE_MAIN_FN int pathtrace_main_in(int argc, char** argv, const scene
     io.method = parse_integrator(method);
     io.max_depth = opt.depth;
     io.rr_depth = rr_depth;
-    if (selection != "power" && selection != "uniform")
-      throw error("--lights must be power or uniform, got '" + selection + "'");
-    io.lights = selection == "power" ? light_selection::power : light_selection::uniform;
+    io.lights = parse_enum<light_selection>(selection, "--lights");
     if (!report.empty() && reference.empty()) throw error("--report needs --reference");
     if (!json.empty()) {  // for the Mitsuba reference (mitsuba_export.hpp), then stop
       write_file_atomically(json, mitsuba_scene_json(sc, W, H, io.max_depth));

@@ -13,6 +13,7 @@
 // two triangles hits at least one of them, and a spawned ray never hits its own triangle.
 // Every method: a degenerate triangle (computed N = 0) and NaN/inf input are never hit; hits
 // are in the open interval (t_min, t_max), t_min >= 0.
+#include <zraka/core/enum_names.hpp>
 #include <zraka/core/hit.hpp>
 #include <zraka/core/ray.hpp>
 #include <zraka/geometry/spawn.hpp>
@@ -303,14 +304,9 @@ bool intersect_watertight(const triangle_t<T>& tri, const ray_t<T>& r, T t_min, 
 // The method a program picks at run time (chapter 1.5's --method).
 enum class triangle_method { edge_tests, moller_trumbore, watertight };
 
-constexpr std::string_view name(triangle_method m) {
-  switch (m) {
-    case triangle_method::edge_tests: return "edge";
-    case triangle_method::moller_trumbore: return "mt";
-    case triangle_method::watertight: return "watertight";
-  }
-  return "?";
-}
+inline constexpr enum_name<triangle_method> triangle_method_names[] = {
+    {triangle_method::edge_tests, "edge"}, {triangle_method::moller_trumbore, "mt"}, {triangle_method::watertight, "watertight"}};
+constexpr std::span<const enum_name<triangle_method>> enum_names(triangle_method) { return triangle_method_names; }  // enum_names.hpp
 
 template <class T>
 bool intersect(const triangle_t<T>& tri, const ray_t<T>& r, T t_min, T t_max, hit_t<T>& rec,

@@ -23,16 +23,18 @@
 // only by the camera path and counted with weight 1. A thin-lens camera is refused by name
 // (camera_importance.hpp).
 //
-// Determinism: the image is split into fixed bands of rows; each band's pixels use rng(seed,
-// pixel, sample) and splat into the band's own film, and the films are summed in band order, so
-// --seed gives the same bits for any thread count.
+// Determinism: the image is split into fixed bands of rows, parallel_for's items (parallel.hpp);
+// each band's pixels use rng(seed, pixel, sample) and splat into the band's own film, and the
+// films are summed in band order (in_order), so --seed gives the same bits for any thread count.
 #include <zraka/cameras/camera_importance.hpp>
 #include <zraka/core/compiled.hpp>
+#include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/parallel.hpp>
 #include <zraka/image/image.hpp>
 #include <zraka/scene/lights.hpp>
 #include <zraka/materials/material.hpp>
-#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/path_kit.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/scene/scene.hpp>
@@ -42,16 +44,17 @@
 
 #include <atomic>
 #include <cstdint>
-#include <exception>
-#include <mutex>
+#include <optional>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 namespace zraka {
 
 enum class mis_heuristic { power, balance };
+inline constexpr enum_name<mis_heuristic> mis_heuristic_names[] = {{mis_heuristic::power, "power"},
+                                                                   {mis_heuristic::balance, "balance"}};
+constexpr std::span<const enum_name<mis_heuristic>> enum_names(mis_heuristic) { return mis_heuristic_names; }  // enum_names.hpp
 
 struct bdpt_options {
   int max_depth = 8;  // bounces, as path_options::max_depth
@@ -118,8 +121,6 @@ template <class T> class bdpt_t {
       throw error("bdpt: --strategies must be from 0 to max_depth + 1 = " + std::to_string(opt.max_depth + 1));
     if ((opt.only_s >= 0) != (opt.only_t >= 0) || (opt.only_t >= 0 && opt.only_t < 1))
       throw error("bdpt: a single strategy needs s >= 0 and t >= 1");
-    popt_.max_depth = opt.max_depth;
-    popt_.rr_depth = opt.rr_depth;
   }
   const light_set_t<T>& lights() const { return lights_; }
   const camera_importance_t<T>& eye() const { return eye_; }
@@ -233,7 +234,7 @@ template <class T> class bdpt_t {
       prev.pdf_rev = to_area(pdf_rev_w, cur, prev);
       pdf_w = s->specular ? T(0) : s->pdf;
       beta *= s->weight;
-      if (!survives_roulette(beta, bounce, popt_, g)) return;
+      if (!survives_roulette(beta, bounce, opt_.rr_depth, g)) return;
       r = spawn_ray(sh.h, s->direction);
     }
   }
@@ -399,7 +400,6 @@ template <class T> class bdpt_t {
   typename camera_t<T>::prepared cam_;
   camera_importance_t<T> eye_;
   bdpt_options opt_;
-  path_options popt_;
   // The subpaths of the sample being made (one bdpt_t per thread: see render_bdpt).
   mutable std::vector<vertex> camera_, light_;
   mutable std::vector<T> cf_, cr_, lf_, lr_;  // mis_weight's copies of the densities
@@ -432,72 +432,54 @@ template <class T> bdpt_render_t render_bdpt(const scene_t<T>& sc, int spp, std:
   std::vector<std::vector<vec3>> own_s(std::size_t(slots), std::vector<vec3>(N, vec3(0)));
   std::vector<vec3> splats(N, vec3(0));                                   // the bands' films, summed
   std::vector<std::vector<vec3>> splats_s(std::size_t(K), std::vector<vec3>(N, vec3(0)));  // (k, t = 1)
-  std::vector<std::vector<vec3>> pending(static_cast<std::size_t>(bands));
-  std::vector<std::vector<std::vector<vec3>>> pending_s(static_cast<std::size_t>(bands));
-  int merged = 0;
-  std::mutex merge_mutex;
-  std::atomic<int> next{0};
+  struct films {
+    std::vector<vec3> all;
+    std::vector<std::vector<vec3>> by_length;  // (k, t = 1), k = 1..K
+  };
+  in_order<films> band_films(static_cast<std::size_t>(bands));
+  std::vector<std::optional<bdpt_t<T>>> tracers(static_cast<std::size_t>(threads));  // one a thread: it keeps its subpaths
   std::atomic<std::uint64_t> rays{0}, bad{0};
-  std::exception_ptr failure;
   stopwatch clock;
 
-  auto worker = [&] {
-    try {
-      bdpt_t<T> tracer(sc, opt);
-      typename bdpt_t<T>::sample_result res;
-      for (int b = next++; b < bands; b = next++) {
-        std::vector<vec3> film(N, vec3(0));
-        std::vector<std::vector<vec3>> film_s(std::size_t(K), std::vector<vec3>(N, vec3(0)));
-        std::uint64_t band_rays = 0, band_bad = 0;
-        for (int y = b * opt.band_rows; y < std::min(H, (b + 1) * opt.band_rows); ++y)
-          for (int x = 0; x < W; ++x) {
-            const std::size_t pixel = std::size_t(y) * std::size_t(W) + std::size_t(x);
-            vec3 sum(0);
-            for (int s = 0; s < spp; ++s) {
-              rng g(seed, std::uint32_t(pixel), std::uint32_t(s));
-              const vec2 u = g.uniform2();
-              res.L = rgb(0);
-              res.splats.clear();
-              res.by_strategy.clear();
-              res.splats_by_strategy.clear();
-              res.nonfinite = res.rays = 0;
-              tracer.sample(T((x + u.x) / W), T((y + u.y) / H), g, res);
-              sum += vec3(res.L);
-              for (const auto& sp : res.splats) film[std::size_t(sp.y) * std::size_t(W) + std::size_t(sp.x)] += vec3(sp.value);
-              for (const auto& [slot, v] : res.by_strategy) own_s[std::size_t(slot)][pixel] += vec3(v);
-              for (const auto& [k, sp] : res.splats_by_strategy)
-                film_s[std::size_t(k - 1)][std::size_t(sp.y) * std::size_t(W) + std::size_t(sp.x)] += vec3(sp.value);
-              band_rays += res.rays;
-              band_bad += res.nonfinite;
-            }
-            own[pixel] = sum;
-          }
-        rays += band_rays;
-        bad += band_bad;
-        std::lock_guard<std::mutex> lock(merge_mutex);
-        pending[std::size_t(b)] = std::move(film);
-        pending_s[std::size_t(b)] = std::move(film_s);
-        for (; merged < bands && !pending[std::size_t(merged)].empty(); ++merged) {
-          auto& f = pending[std::size_t(merged)];
-          for (std::size_t i = 0; i < N; ++i) splats[i] += f[i];
-          for (int k = 0; k < K; ++k)
-            for (std::size_t i = 0; i < N; ++i) splats_s[std::size_t(k)][i] += pending_s[std::size_t(merged)][std::size_t(k)][i];
-          f = std::vector<vec3>();
-          pending_s[std::size_t(merged)].clear();
+  parallel_for(std::size_t(bands), threads, [&](std::size_t b, int worker) {
+    auto& tracer = tracers[std::size_t(worker)];
+    if (!tracer) tracer.emplace(sc, opt);
+    typename bdpt_t<T>::sample_result res;
+    films film{std::vector<vec3>(N, vec3(0)), std::vector<std::vector<vec3>>(std::size_t(K), std::vector<vec3>(N, vec3(0)))};
+    std::uint64_t band_rays = 0, band_bad = 0;
+    for (int y = int(b) * opt.band_rows; y < std::min(H, (int(b) + 1) * opt.band_rows); ++y)
+      for (int x = 0; x < W; ++x) {
+        const std::size_t pixel = std::size_t(y) * std::size_t(W) + std::size_t(x);
+        vec3 sum(0);
+        for (int s = 0; s < spp; ++s) {
+          rng g(seed, std::uint32_t(pixel), std::uint32_t(s));
+          const vec2 u = g.uniform2();
+          res.L = rgb(0);
+          res.splats.clear();
+          res.by_strategy.clear();
+          res.splats_by_strategy.clear();
+          res.nonfinite = res.rays = 0;
+          tracer->sample(T((x + u.x) / W), T((y + u.y) / H), g, res);
+          sum += vec3(res.L);
+          for (const auto& sp : res.splats) film.all[std::size_t(sp.y) * std::size_t(W) + std::size_t(sp.x)] += vec3(sp.value);
+          for (const auto& [slot, v] : res.by_strategy) own_s[std::size_t(slot)][pixel] += vec3(v);
+          for (const auto& [k, sp] : res.splats_by_strategy)
+            film.by_length[std::size_t(k - 1)][std::size_t(sp.y) * std::size_t(W) + std::size_t(sp.x)] += vec3(sp.value);
+          band_rays += res.rays;
+          band_bad += res.nonfinite;
         }
+        own[pixel] = sum;
       }
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(merge_mutex);
-      if (!failure) failure = std::current_exception();
-      next = bands;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
-  if (failure) std::rethrow_exception(failure);
-  if (merged != bands) throw error("bdpt: internal error, " + std::to_string(bands - merged) + " bands not merged");
+    rays += band_rays;
+    bad += band_bad;
+    band_films.put(b, std::move(film), [&](const films& f) {
+      for (std::size_t i = 0; i < N; ++i) splats[i] += f.all[i];
+      for (int k = 0; k < K; ++k)
+        for (std::size_t i = 0; i < N; ++i) splats_s[std::size_t(k)][i] += f.by_length[std::size_t(k)][i];
+    });
+  });
+  if (band_films.merged() != std::size_t(bands))
+    throw error("bdpt: internal error, " + std::to_string(std::size_t(bands) - band_films.merged()) + " bands not merged");
 
   bdpt_render_t out;
   out.img = image(W, H);

@@ -16,10 +16,12 @@
 // a the acceptance probability), so rejected proposals still contribute.
 //
 // Determinism: bootstrap sample i uses rng(seed, i, bootstrap_stream), chain c its own streams;
-// each chain splats into an image of its own, and the chains' images are added in chain order,
-// so the image is the same for a seed whatever the thread count.
+// both are parallel_for's items (parallel.hpp); each chain splats into an image of its own, and
+// the chains' images are added in chain order (in_order), so the image is the same for a seed
+// whatever the thread count.
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/parallel.hpp>
 #include <zraka/image/image.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/sampling/pss.hpp>
@@ -30,10 +32,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
-#include <exception>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace zraka {
@@ -100,26 +99,13 @@ metropolis_render_t render_metropolis(const scene_t<T>& sc, const path_options& 
   const auto cam = sc.prepared_camera();
   stopwatch clock;
   std::atomic<std::uint64_t> rays{0}, bad{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  auto run = [&](auto&& body, std::uint64_t count) {  // body(i, rays, bad) for i in [0, count)
-    std::atomic<std::uint64_t> next{0};
-    auto worker = [&] {
+  // body(i, rays, bad) for i in [0, count): the items of parallel_for; the counts are summed.
+  auto run = [&](auto&& body, std::uint64_t count) {
+    parallel_for(std::size_t(count), threads, [&](std::size_t i) {
       std::uint64_t r = 0, b = 0;
-      try {
-        for (std::uint64_t i = next++; i < count; i = next++) body(i, r, b);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-        next = count;
-      }
+      body(std::uint64_t(i), r, b);
       rays += r, bad += b;
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (auto& th : pool) th.join();
-    if (failure) std::rethrow_exception(failure);
+    });
   };
 
   // [listing mlt-bootstrap]
@@ -145,9 +131,7 @@ metropolis_render_t render_metropolis(const scene_t<T>& sc, const path_options& 
   // the sum in chain order (a film waits for the ones before it).
   const std::uint64_t C = std::uint64_t(opt.chains);
   std::vector<vec3> sum(N, vec3(0));
-  std::vector<std::vector<vec3>> pending(C);
-  std::uint64_t merged = 0;
-  std::mutex merge_mutex;
+  in_order<std::vector<vec3>> chain_films(C);
   std::vector<std::uint64_t> accepted(C, 0), proposed(C, 0), large_acc(C, 0), large_prop(C, 0);
   run([&](std::uint64_t c, std::uint64_t& r, std::uint64_t& b) {
     const std::uint64_t steps = M / C + (c < M % C ? 1 : 0);
@@ -181,16 +165,14 @@ metropolis_render_t render_metropolis(const scene_t<T>& sc, const path_options& 
         u.reject();
       }
     }
-    std::lock_guard<std::mutex> lock(merge_mutex);
-    pending[c] = std::move(film);
-    for (; merged < C && !pending[merged].empty(); ++merged) {
-      for (std::size_t i = 0; i < N; ++i) sum[i] += pending[merged][i];
-      pending[merged] = std::vector<vec3>();
-    }
+    chain_films.put(c, std::move(film), [&](const std::vector<vec3>& f) {
+      for (std::size_t i = 0; i < N; ++i) sum[i] += f[i];
+    });
   }, C);
   // [end]
 
-  if (merged != C) throw error("metropolis: internal error, " + std::to_string(C - merged) + " chains not merged");
+  if (chain_films.merged() != C)
+    throw error("metropolis: internal error, " + std::to_string(C - chain_films.merged()) + " chains not merged");
   const double scale = out.b * double(N) / double(M);
   out.img = image(W, H);
   for (std::size_t i = 0; i < N; ++i) out.img.pixels[i] = rgb(sum[i] * scale);

@@ -28,8 +28,11 @@
 // The OpenCL kernel (kernels/pathtrace.cl) mirrors this loop line for line (without media:
 // gpu_scene.hpp refuses them).
 #include <zraka/core/compiled.hpp>
+#include <zraka/core/enum_names.hpp>
 #include <zraka/scene/lights.hpp>
 #include <zraka/materials/material.hpp>
+#include <zraka/integrators/next_event.hpp>
+#include <zraka/integrators/path_kit.hpp>
 #include <zraka/scene/media.hpp>
 #include <zraka/media/phase.hpp>
 #include <zraka/core/rng.hpp>
@@ -46,21 +49,10 @@
 namespace zraka {
 
 enum class integrator { naive, nee, mis };
-
-inline const char* name(integrator i) {
-  switch (i) {
-    case integrator::naive: return "naive";
-    case integrator::nee: return "nee";
-    case integrator::mis: return "mis";
-  }
-  return "?";
-}
-
-inline integrator parse_integrator(std::string_view s) {
-  for (integrator i : {integrator::naive, integrator::nee, integrator::mis})
-    if (s == name(i)) return i;
-  throw error("unknown integrator '" + std::string(s) + "' (naive, nee, mis)");
-}
+inline constexpr enum_name<integrator> integrator_names[] = {
+    {integrator::naive, "naive"}, {integrator::nee, "nee"}, {integrator::mis, "mis"}};
+constexpr std::span<const enum_name<integrator>> enum_names(integrator) { return integrator_names; }  // enum_names.hpp
+inline integrator parse_integrator(std::string_view s) { return parse_enum<integrator>(s, "integrator"); }
 
 struct path_options {
   integrator method = integrator::mis;
@@ -69,47 +61,6 @@ struct path_options {
   light_selection lights = light_selection::power;
   medium_options media;  // book 6.1: delta tracking or ray marching (medium.hpp)
 };
-
-// The power heuristic (exponent 2) for a sample of density a, the other technique's being b.
-template <class T> T power_heuristic(T a, T b) {
-  if (!(a > T(0))) return T(0);
-  if (std::isinf(a)) return T(1);
-  const T r = b / a;  // a^2 / (a^2 + b^2) without overflowing a^2
-  return T(1) / (T(1) + r * r);
-}
-
-// [listing path-dimensions]
-// Where a path's numbers live in its stream when a sampler backs it (samplers.hpp, book 5.1):
-// the camera's coordinates first, then a block per bounce, so coordinate k means the same draw
-// in every sample and the sampler's 2-D pairs (coordinates 2i, 2i + 1) fall on the 2-D draws.
-// A bounce that draws less leaves the rest of its block unused; one that draws more (a
-// medium's free flights) pushes its later draws on, as rng::seek only jumps forward. Two stream
-// numbers make one coordinate (a double). Plain streams ignore all this: their numbers are
-// independent wherever they are.
-enum class path_slot : std::uint32_t {
-  light_choice = 0,  // 1 (coordinate 1 of the block unused)
-  light_point = 2,   // 2
-  bsdf = 4,          // 2 for the direction (or 1 for glass, 3 for fuzzy metal), 1 for the lobe
-  roulette = 7,      // 1
-};
-inline constexpr std::uint32_t camera_coordinates = 4;  // the pixel position (0, 1), the lens (2, 3)
-inline constexpr std::uint32_t bounce_coordinates = 8;
-constexpr std::uint32_t path_number(int bounce, path_slot s) {
-  return 2 * (camera_coordinates + bounce_coordinates * std::uint32_t(bounce) + std::uint32_t(s));
-}
-// [end]
-
-// [listing roulette]
-// Russian roulette: true if the path goes on (then beta has been divided by q).
-inline bool survives_roulette(rgb& beta, int bounce, const path_options& opt, rng& g) {
-  if (bounce < opt.rr_depth) return true;
-  g.seek(path_number(bounce, path_slot::roulette));
-  const float q = std::min(1.0f, max_component(beta));
-  if (!(g.uniform() < q)) return false;
-  beta /= q;
-  return true;
-}
-// [end]
 
 // [listing path]
 template <class T>
@@ -136,27 +87,19 @@ rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r
         mh.p = r.at(f.t);
         const phase_t<T> ph{T(md.g)};
         const vec3_t<T> wo = -r.direction;
-        if (nee) {
-          g.seek(path_number(bounce, path_slot::light_choice));
-          const T u_select = T(g.uniform());
-          g.seek(path_number(bounce, path_slot::light_point));
-          const vec2_t<T> u(g.uniform2());
-          if (const auto e = lights.sample(mh, u_select, u); e && e->Le != rgb(0)) {
-            ++rays;
-            const rgb tr = shadow_transmittance(sc, e->shadow, current, g, opt.media, rays);
-            if (tr != rgb(0)) {
-              const T p = ph.eval(wo, e->wi);
-              const T w = mis && !e->delta ? power_heuristic(e->pdf, p) : T(1);
-              L += beta * tr * e->Le * float(p * w / e->pdf);
-            }
-          }
+        if (nee) {  // the next event (next_event.hpp), its shadow ray through the media
+          const auto through_media = [&](const light_sample_t<T>& e) {
+            return shadow_transmittance(sc, e.shadow, current, g, opt.media, rays);
+          };
+          if (const auto ne = next_event(lights, mh, medium_vertex_t<T>{ph, wo}, mis, bounce, g, through_media, rays))
+            L += ne->estimate(beta);
         }
         g.seek(path_number(bounce, path_slot::bsdf));
         const phase_sample_t<T> ps = ph.sample(wo, vec2_t<T>(g.uniform2()));  // weight p / pdf = 1
         specular = false;
         bsdf_pdf = ps.pdf;
         from = mh.p;
-        if (!survives_roulette(beta, bounce, opt, g)) return L;
+        if (!survives_roulette(beta, bounce, opt.rr_depth, g)) return L;
         r = ray_t<T>(mh.p, ps.wi);
         continue;
       }
@@ -188,24 +131,13 @@ rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r
     }
     if (bounce == opt.max_depth) return L;
     const vec3_t<T> wo = -r.direction;
-    if (nee && has_density(m)) {  // the next event: a point on a light
-      g.seek(path_number(bounce, path_slot::light_choice));
-      const T u_select = T(g.uniform());
-      g.seek(path_number(bounce, path_slot::light_point));
-      const vec2_t<T> u(g.uniform2());
-      if (const auto e = lights.sample(sh.h, u_select, u); e && e->Le != rgb(0)) {
-        const rgb f_cos = brdf_cos(m, sh.h, wo, e->wi);
-        if (f_cos != rgb(0)) {
-          ++rays;
-          const rgb tr = !media ? rgb(occluded(sc, e->shadow) ? 0.0f : 1.0f)
-                                : shadow_transmittance(sc, e->shadow, medium_after(sc, current, m, sh.h, e->wi), g,
-                                                       opt.media, rays);
-          if (tr != rgb(0)) {
-            const T w = mis && !e->delta ? power_heuristic(e->pdf, scatter_pdf(m, sh.h, wo, e->wi)) : T(1);
-            L += beta * tr * f_cos * e->Le * float(w / e->pdf);
-          }
-        }
-      }
+    if (nee && has_density(m)) {  // the next event: a point on a light (next_event.hpp)
+      const auto shadow = [&](const light_sample_t<T>& e) {
+        return !media ? rgb(occluded(sc, e.shadow) ? 0.0f : 1.0f)
+                      : shadow_transmittance(sc, e.shadow, medium_after(sc, current, m, sh.h, e.wi), g, opt.media, rays);
+      };
+      if (const auto ne = next_event(lights, sh.h, surface_vertex_t<T>{m, sh.h, wo}, mis, bounce, g, shadow, rays))
+        L += ne->estimate(beta);
     }
     g.seek(path_number(bounce, path_slot::bsdf));
     const auto s = scatter(m, r.direction, sh.h, g);
@@ -215,7 +147,7 @@ rgb path_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, ray_t<T> r
     bsdf_pdf = s->pdf;
     from = sh.h.p;
     if (media) current = medium_after(sc, current, m, sh.h, s->direction);
-    if (!survives_roulette(beta, bounce, opt, g)) return L;
+    if (!survives_roulette(beta, bounce, opt.rr_depth, g)) return L;
     r = spawn_ray(sh.h, s->direction);
   }
 }

@@ -14,6 +14,7 @@
 #include <zraka/core/compiled.hpp>
 #include <zraka/scene/lights.hpp>
 #include <zraka/materials/material.hpp>
+#include <zraka/integrators/next_event.hpp>
 #include <zraka/integrators/photon_map.hpp>
 #include <zraka/integrators/photons.hpp>
 #include <zraka/core/rng.hpp>
@@ -44,14 +45,12 @@ visible_point_t<T> find_visible_point(const scene_t<T>& sc, const light_set_t<T>
     const material& m = sc.materials[std::size_t(vp.sh.material)];
     vp.direct += vp.beta * emitted(m, vp.sh.h);
     const vec3_t<T> wo = -r.direction;
-    if (has_density(m)) {  // the next event, drawn as the path loop draws it
-      const T u_select = T(g.uniform());
-      const vec2_t<T> u(g.uniform2());
-      if (const auto e = lights.sample(vp.sh.h, u_select, u); e && e->Le != rgb(0)) {
-        const rgb f_cos = brdf_cos(m, vp.sh.h, wo, e->wi);
-        if (f_cos != rgb(0) && (++rays, !occluded(sc, e->shadow)))
-          vp.direct += vp.beta * f_cos * e->Le / float(e->pdf);
-      }
+    if (has_density(m)) {  // the path loop's next event (next_event.hpp), without MIS
+      const auto shadow = [&](const light_sample_t<T>& e) { return rgb(occluded(sc, e.shadow) ? 0.0f : 1.0f); };
+      // f Le / pdf, divided as this chapter's images were made (estimate() multiplies by 1 / pdf:
+      // the same value, rounded differently)
+      if (const auto ne = next_event(lights, vp.sh.h, surface_vertex_t<T>{m, vp.sh.h, wo}, false, -1, g, shadow, rays))
+        vp.direct += vp.beta * ne->at.f * ne->Le / float(ne->pdf);
       vp.found = true;
       vp.wo = wo;
       return vp;

@@ -7,29 +7,27 @@
 // scatters with the core's materials (scatter() in material.hpp: the weight f |cos| / p is what
 // the flux is multiplied by), specular kinds included; it is stored only where the material has a
 // density (has_density: a Lambert, Phong or custom surface), because a density estimate needs a
-// BRDF to evaluate. Russian roulette is the path loop's (survives_roulette). Glass needs no
+// BRDF to evaluate. Russian roulette is the path loop's (survives_roulette, path_kit.hpp). Glass needs no
 // eta^2 factor here: flux, unlike radiance, is not compressed across a boundary.
 //
-// Photons of a pass are traced in fixed chunks; photon i of pass k has its own stream
-// rng(seed, i, photon_stream + k), and the chunks are merged in chunk order, so the photons (and
-// everything made from them) are the same for any number of threads.
+// Photons of a pass are traced in fixed chunks, parallel_for's items (parallel.hpp); photon i of
+// pass k has its own stream rng(seed, i, photon_stream + k), and the chunks are merged in chunk
+// order, so the photons (and everything made from them) are the same for any number of threads.
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/parallel.hpp>
 #include <zraka/scene/lights.hpp>
 #include <zraka/materials/material.hpp>
-#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/path_kit.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/scene/scene_query.hpp>
 #include <zraka/geometry/spawn.hpp>
 
-#include <atomic>
+#include <algorithm>
 #include <cstdint>
-#include <exception>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace zraka {
@@ -87,8 +85,6 @@ rgb trace_photon(const scene_t<T>& sc, const light_set_t<T>& lights, rng& g, con
   if (!is_finite(Phi)) return rgb(0);
   ray_t<T> r{e->delta_position ? e->point : offset_origin(e->point, e->p_error, e->normal, e->direction),
              e->direction};
-  path_options roulette;
-  roulette.rr_depth = opt.rr_depth;
   rgb beta(1);
   bool all_specular = true;
   for (int bounce = 0; bounce <= opt.max_depth; ++bounce) {
@@ -102,35 +98,12 @@ rgb trace_photon(const scene_t<T>& sc, const light_set_t<T>& lights, rng& g, con
     if (!s) break;  // absorbed (or an emitter, which does not reflect)
     beta *= s->weight;
     all_specular = all_specular && s->specular;
-    if (!survives_roulette(beta, bounce, roulette, g)) break;
+    if (!survives_roulette(beta, bounce, opt.rr_depth, g)) break;
     r = spawn_ray(sh.h, s->direction);
   }
   return Phi;
 }
 // [end]
-
-// fn(i) for i in [0, n) on `threads` threads, work handed out from a shared counter. The caller
-// makes the result independent of the order (each i writes its own slot).
-template <class Fn> void parallel_for(std::size_t n, int threads, Fn&& fn) {
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  auto worker = [&] {
-    try {
-      for (std::size_t i = next++; i < n; i = next++) fn(i);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
-      next = n;
-    }
-  };
-  const int t = resolve_threads(threads);
-  std::vector<std::thread> pool;
-  for (int i = 1; i < t && std::size_t(i) < n; ++i) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
-  if (failure) std::rethrow_exception(failure);
-}
 
 template <class T> struct photon_pass_t {
   std::vector<photon_t<T>> photons;  // in photon order

@@ -30,6 +30,7 @@
 // path throughput so that the weights depend on the medium alone.
 #include <zraka/geometry/aabb.hpp>
 #include <zraka/core/compiled.hpp>
+#include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image.hpp>
 #include <zraka/core/ray.hpp>
@@ -47,11 +48,11 @@ namespace zraka {
 
 enum class media_estimator { delta, march };
 
-inline const char* name(media_estimator e) { return e == media_estimator::delta ? "delta" : "march"; }
+inline constexpr enum_name<media_estimator> media_estimator_names[] = {{media_estimator::delta, "delta"},
+                                                                       {media_estimator::march, "march"}};
+constexpr std::span<const enum_name<media_estimator>> enum_names(media_estimator) { return media_estimator_names; }  // enum_names.hpp
 inline media_estimator parse_media_estimator(std::string_view s) {
-  if (s == "delta") return media_estimator::delta;
-  if (s == "march") return media_estimator::march;
-  throw error("unknown media estimator '" + std::string(s) + "' (delta, march)");
+  return parse_enum<media_estimator>(s, "media estimator");
 }
 
 struct medium_options {

@@ -8,6 +8,7 @@
 //                pixel crossed by an edge the error falls faster, ~ n^(-3/4).
 // Every position is a function of (k, n) and the sample's own random stream, so a renderer can
 // compute any sample of any pixel independently (deterministic for any number of threads).
+#include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/core/rng.hpp>
 
@@ -19,20 +20,10 @@ namespace zraka {
 
 enum class pixel_pattern { regular, uniform, stratified };
 
-inline const char* name(pixel_pattern p) {
-  switch (p) {
-    case pixel_pattern::regular: return "regular";
-    case pixel_pattern::uniform: return "uniform";
-    case pixel_pattern::stratified: return "stratified";
-  }
-  return "?";
-}
-
-inline pixel_pattern parse_pixel_pattern(std::string_view s) {
-  for (pixel_pattern p : {pixel_pattern::regular, pixel_pattern::uniform, pixel_pattern::stratified})
-    if (s == name(p)) return p;
-  throw error("unknown pixel pattern '" + std::string(s) + "' (regular, uniform, stratified)");
-}
+inline constexpr enum_name<pixel_pattern> pixel_pattern_names[] = {
+    {pixel_pattern::regular, "regular"}, {pixel_pattern::uniform, "uniform"}, {pixel_pattern::stratified, "stratified"}};
+constexpr std::span<const enum_name<pixel_pattern>> enum_names(pixel_pattern) { return pixel_pattern_names; }  // enum_names.hpp
+inline pixel_pattern parse_pixel_pattern(std::string_view s) { return parse_enum<pixel_pattern>(s, "pixel pattern"); }
 
 // The grid for n samples: nx x ny = n with nx the largest divisor of n not above sqrt(n), so
 // square numbers give square grids and a prime n gives 1 x n strips.

@@ -22,6 +22,7 @@
 // A program backs a sample's stream with its point (sample_point::drive); the first
 // `coordinates` coordinates come from the sampler, the rest of a long path from the stream's
 // own hash (rng.hpp), still correct, only no longer low-discrepancy.
+#include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/core/rng.hpp>
@@ -35,23 +36,13 @@ namespace zraka {
 
 enum class sampler_kind { independent, stratified, halton, sobol };
 
-inline const char* name(sampler_kind k) {
-  switch (k) {
-    case sampler_kind::independent: return "independent";
-    case sampler_kind::stratified: return "stratified";
-    case sampler_kind::halton: return "halton";
-    case sampler_kind::sobol: return "sobol";
-  }
-  return "?";
-}
-
-inline constexpr const char* sampler_names = "independent, stratified, halton, sobol";
-
-inline sampler_kind parse_sampler(std::string_view s) {
-  for (sampler_kind k : {sampler_kind::independent, sampler_kind::stratified, sampler_kind::halton, sampler_kind::sobol})
-    if (s == name(k)) return k;
-  throw error("unknown sampler '" + std::string(s) + "' (" + sampler_names + ")");
-}
+inline constexpr enum_name<sampler_kind> sampler_kind_names[] = {{sampler_kind::independent, "independent"},
+                                                                 {sampler_kind::stratified, "stratified"},
+                                                                 {sampler_kind::halton, "halton"},
+                                                                 {sampler_kind::sobol, "sobol"}};
+constexpr std::span<const enum_name<sampler_kind>> enum_names(sampler_kind) { return sampler_kind_names; }  // enum_names.hpp
+inline const std::string sampler_names = enum_name_list<sampler_kind>();  // "independent, stratified, halton, sobol"
+inline sampler_kind parse_sampler(std::string_view s) { return parse_enum<sampler_kind>(s, "sampler"); }
 
 constexpr std::uint32_t reverse_bits(std::uint32_t x) {
   x = (x >> 16) | (x << 16);

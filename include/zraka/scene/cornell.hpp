@@ -8,6 +8,7 @@
 // Coordinates: y up, the room spans x and z in [-1, 1], y in [0, 2]; the camera looks down -z.
 // scenes/cornell*.yaml describe the same scenes for the scene-file loader.
 #include <zraka/core/compiled.hpp>
+#include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/scene/scene.hpp>
 
@@ -38,19 +39,11 @@ void add_box(scene_t<T>& sc, const vec3_t<T>& c, const vec3_t<T>& size, T degree
 
 enum class cornell_variant { boxes, glass, spheres };
 
-inline const char* name(cornell_variant v) {
-  switch (v) {
-    case cornell_variant::boxes: return "boxes";
-    case cornell_variant::glass: return "glass";
-    case cornell_variant::spheres: return "spheres";
-  }
-  return "?";
-}
-
+inline constexpr enum_name<cornell_variant> cornell_variant_names[] = {
+    {cornell_variant::boxes, "boxes"}, {cornell_variant::glass, "glass"}, {cornell_variant::spheres, "spheres"}};
+constexpr std::span<const enum_name<cornell_variant>> enum_names(cornell_variant) { return cornell_variant_names; }  // enum_names.hpp
 inline cornell_variant parse_cornell_variant(std::string_view s) {
-  for (cornell_variant v : {cornell_variant::boxes, cornell_variant::glass, cornell_variant::spheres})
-    if (s == name(v)) return v;
-  throw error("unknown Cornell box variant '" + std::string(s) + "' (boxes, glass, spheres)");
+  return parse_enum<cornell_variant>(s, "Cornell box variant");
 }
 
 // [listing cornell]

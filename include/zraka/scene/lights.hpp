@@ -22,6 +22,7 @@
 // that when two-sided; 4 pi I for a point light), or uniformly (light_selection::uniform, for
 // comparison: bench/pathtrace_bench measures what choosing by power buys).
 #include <zraka/core/compiled.hpp>
+#include <zraka/core/enum_names.hpp>
 #include <zraka/sampling/sampling.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/geometry/spawn.hpp>
@@ -37,6 +38,9 @@
 namespace zraka {
 
 enum class light_selection { power, uniform };
+inline constexpr enum_name<light_selection> light_selection_names[] = {{light_selection::power, "power"},
+                                                                       {light_selection::uniform, "uniform"}};
+constexpr std::span<const enum_name<light_selection>> enum_names(light_selection) { return light_selection_names; }  // enum_names.hpp
 
 template <class T> struct light_sample_t {
   vec3_t<T> point{T(0)};  // on the light
