@@ -237,35 +237,40 @@ inline gpu_camera to_gpu(const camera_t<float>::prepared& c) { return detail::ca
 // The material's numbers; its texture records (albedo_texture, roughness_texture) are added by
 // pack_scene, which owns the texture table.
 inline gpu_material to_gpu(const material& m) {
+  using namespace material_kinds;
   gpu_material g{};
   g.albedo_texture = g.roughness_texture = -1;
-  switch (m.kind) {
-    case material_kind::lambertian: g.kind = gpu_lambertian; break;
-    case material_kind::fuzzy_metal: g.kind = gpu_metal; break;
-    case material_kind::dielectric: g.kind = gpu_dielectric; break;
-    case material_kind::emitter: g.kind = gpu_emitter; break;
-    case material_kind::phong: g.kind = gpu_phong; break;
-    case material_kind::rough_conductor: g.kind = gpu_rough_conductor; break;
-    case material_kind::rough_dielectric: g.kind = gpu_rough_dielectric; break;
-  }
-  g.roughness = float(m.roughness);
-  g.schlick = m.conductor.schlick ? 1 : 0;  // Schlick's F0 travels in eta
-  g.eta = to_gpu(m.conductor.schlick ? m.conductor.f0 : m.conductor.eta);
-  g.k = to_gpu(m.conductor.k);
-  if (m.kind == material_kind::phong) {  // brdf_at(): Lambert kd/pi plus the normalised lobe ks
-    g.albedo_a = to_gpu(m.kd);
-    g.albedo_b = to_gpu(m.ks);
-    g.shininess = float(m.shininess);
+  // A kind's own fields; the others keep a default material's values (the kernel reads a
+  // field only for the kinds that have it).
+  texture albedo = lambertian{}.albedo;
+  ggx_roughness roughness;
+  conductor_fresnel conductor;
+  double fuzz = 0, ior = dielectric{}.ior;
+  if (const auto* k = m.get<lambertian>()) g.kind = gpu_lambertian, albedo = k->albedo;
+  if (const auto* k = m.get<fuzzy_metal>()) g.kind = gpu_metal, albedo = k->albedo, fuzz = k->fuzz;
+  if (const auto* k = m.get<dielectric>()) g.kind = gpu_dielectric, ior = k->ior;
+  if (m.is<emitter>()) g.kind = gpu_emitter, albedo = texture::solid(rgb(0));
+  if (m.is<phong>()) g.kind = gpu_phong;
+  if (const auto* k = m.get<rough_conductor>()) g.kind = gpu_rough_conductor, roughness = k->roughness, conductor = k->conductor;
+  if (const auto* k = m.get<rough_dielectric>()) g.kind = gpu_rough_dielectric, roughness = k->roughness, ior = k->ior;
+  g.roughness = float(roughness.alpha);
+  g.schlick = conductor.schlick ? 1 : 0;  // Schlick's F0 travels in eta
+  g.eta = to_gpu(conductor.schlick ? conductor.f0 : conductor.eta);
+  g.k = to_gpu(conductor.k);
+  if (const auto* k = m.get<phong>()) {  // brdf(): Lambert kd/pi plus the normalised lobe ks
+    g.albedo_a = to_gpu(k->kd);
+    g.albedo_b = to_gpu(k->ks);
+    g.shininess = float(k->shininess);
   } else {
-    g.albedo_a = to_gpu(m.albedo.a);
-    g.albedo_b = to_gpu(m.albedo.b);
-    g.checker = m.albedo.type != texture::kind::checker ? 0 : m.albedo.uv_space ? 2 : 1;
+    g.albedo_a = to_gpu(albedo.a);
+    g.albedo_b = to_gpu(albedo.b);
+    g.checker = albedo.type != texture::kind::checker ? 0 : albedo.uv_space ? 2 : 1;
   }
-  g.cell = float(m.albedo.cell);
+  g.cell = float(albedo.cell);
   g.radiance = to_gpu(m.radiance);
   g.two_sided = m.two_sided ? 1 : 0;
-  g.fuzz = float(m.fuzz);
-  g.ior = float(m.ior);
+  g.fuzz = float(fuzz);
+  g.ior = float(ior);
   return g;
 }
 
@@ -349,21 +354,30 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
     const material& m = sc.material_of(o);
     if (is_custom(m))
       throw error("realtime: " + sc.material_label(sc.material_index(o)) + " is a custom BSDF ('" +
-                  m.bsdf->name() + "'), which the OpenCL kernel cannot run; render it with pathtrace");
+                  m.get<material_kinds::custom>()->bsdf->name() + "'), which the OpenCL kernel cannot run; render it with pathtrace");
   });
   const path_tracer_t<T> tracer(sc, opt);  // the CPU's own checks, and its lights
   const light_set_t<T>& lights = tracer.lights;
   g.light_summary = lights.describe();
   // The albedo is read by Lambert and metal (material.hpp), the roughness map by the microfacets.
-  auto textured_albedo = [](const material& m) {
-    return (m.kind == material_kind::lambertian || m.kind == material_kind::fuzzy_metal) &&
-           (m.albedo.type == texture::kind::image || m.albedo.type == texture::kind::noise);
+  auto albedo_of = [](const material& m) -> const texture* {
+    if (const auto* k = m.get<material_kinds::lambertian>()) return &k->albedo;
+    if (const auto* k = m.get<material_kinds::fuzzy_metal>()) return &k->albedo;
+    return nullptr;
   };
-  auto roughness_map = [](const material& m) { return is_microfacet(m) && m.roughness_map; };
+  auto textured_albedo = [&](const material& m) {
+    const texture* a = albedo_of(m);
+    return a && (a->type == texture::kind::image || a->type == texture::kind::noise);
+  };
+  auto roughness_map_of = [](const material& m) -> const texture* {
+    if (const auto* k = m.get<material_kinds::rough_conductor>()) return k->roughness.map ? &*k->roughness.map : nullptr;
+    if (const auto* k = m.get<material_kinds::rough_dielectric>()) return k->roughness.map ? &*k->roughness.map : nullptr;
+    return nullptr;
+  };
   for (const material& m : sc.materials) {
     gpu_material o = to_gpu(m);
-    if (textured_albedo(m)) o.albedo_texture = pack_texture(g, m.albedo);
-    if (roughness_map(m)) o.roughness_texture = pack_texture(g, *m.roughness_map);
+    if (textured_albedo(m)) o.albedo_texture = pack_texture(g, *albedo_of(m));
+    if (const texture* r = roughness_map_of(m)) o.roughness_texture = pack_texture(g, *r);
     g.materials.push_back(o);
   }
   auto note_texture = [&](const texture& t) {
@@ -375,16 +389,16 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   };
   auto note_material = [&](int mi) {
     const material& m = sc.materials[std::size_t(mi)];
-    f.metal |= m.kind == material_kind::fuzzy_metal;
-    f.dielectric |= m.kind == material_kind::dielectric;
-    f.phong |= m.kind == material_kind::phong;
-    f.rough_conductor |= m.kind == material_kind::rough_conductor;
-    f.rough_dielectric |= m.kind == material_kind::rough_dielectric;
-    f.checker |= m.albedo.type == texture::kind::checker &&
-                 (m.kind == material_kind::lambertian || m.kind == material_kind::fuzzy_metal);
-    f.uv_checker |= f.checker && m.albedo.type == texture::kind::checker && m.albedo.uv_space;
-    if (textured_albedo(m)) note_texture(m.albedo);
-    if (roughness_map(m)) note_texture(*m.roughness_map);
+    f.metal |= m.is<material_kinds::fuzzy_metal>();
+    f.dielectric |= m.is<material_kinds::dielectric>();
+    f.phong |= m.is<material_kinds::phong>();
+    f.rough_conductor |= m.is<material_kinds::rough_conductor>();
+    f.rough_dielectric |= m.is<material_kinds::rough_dielectric>();
+    const texture* a = albedo_of(m);
+    f.checker |= a && a->type == texture::kind::checker;
+    f.uv_checker |= f.checker && a && a->type == texture::kind::checker && a->uv_space;
+    if (textured_albedo(m)) note_texture(*a);
+    if (const texture* r = roughness_map_of(m)) note_texture(*r);
     f.emitters |= emits(m);
   };
   auto light_of = [&](shape_kind k, std::size_t i) { return std::int32_t(lights.index_of({k, int(i)})); };

@@ -41,9 +41,13 @@ struct whitted_options {
   local_model model = local_model::phong;
 };
 
-// The diffuse colour of a surface: the albedo (a texture) or phong's kd.
-template <class T> rgb diffuse_colour(const material& m, const hit_t<T>& h) {
-  return m.kind == material_kind::phong ? m.kd : evaluate(m.albedo, h.p, h.facing_normal(), h.uv);
+// The local model's kd, ks and exponent at a hit, for the kinds that have one (a kind's
+// local_model(): lambertian and phong); none for the others.
+template <class T> std::optional<local_model_terms> local_terms(const material& m, const hit_t<T>& h) {
+  return std::visit([&](const auto& k) -> std::optional<local_model_terms> {
+    if constexpr (requires { k.local_model(h); }) return k.local_model(h);
+    else return std::nullopt;
+  }, m.kind);
 }
 
 // [listing local-shade]
@@ -52,14 +56,14 @@ template <class T> rgb diffuse_colour(const material& m, const hit_t<T>& h) {
 template <class T>
 rgb local_brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& n, const vec3_t<T>& wo,
                    const vec3_t<T>& wi, local_model model) {
-  if (m.kind != material_kind::lambertian && m.kind != material_kind::phong) return rgb(0);
-  const T p = T(m.shininess);
+  const auto lm = local_terms(m, h);
+  if (!lm) return rgb(0);
+  const T p = T(lm->shininess);
   const shading_terms_t<T> k = model == local_model::phong ? phong_terms(n, wi, wo, p)
                                                            : blinn_phong_terms(n, wi, wo, p);
   if (!(glm::dot(n, wo) > T(0))) return rgb(0);  // seen from below the shading normal
   const T norm = model == local_model::phong ? (p + T(2)) / (T(2) * pi<T>) : (p + T(8)) / (T(8) * pi<T>);
-  const rgb ks = m.kind == material_kind::phong ? m.ks : rgb(0);
-  return diffuse_colour(m, h) * float(k.diffuse / pi<T>) + ks * float(norm * k.specular * k.diffuse);
+  return lm->kd * float(k.diffuse / pi<T>) + lm->ks * float(norm * k.specular * k.diffuse);
 }
 // [end]
 
@@ -111,43 +115,36 @@ rgb whitted_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, const r
   // geometric surface (possible where the two normals differ) falls back to the geometric one.
   const vec3_t<T> ng = h.facing_normal(), ns = sh.facing_shading_normal();
   auto outside = [&](const vec3_t<T>& w) { return glm::dot(w, ng) > T(0); };
-  switch (m.kind) {
-    case material_kind::emitter:
-      return emitted(m, h);
-    case material_kind::lambertian:
-    case material_kind::phong: {
-      rgb c = emitted(m, h) + direct_light(sc, lights, sh, wo, g, opt, rays) + sc.ambient * diffuse_colour(m, h);
-      if (m.kind == material_kind::phong && m.ks != rgb(0)) {
-        const vec3_t<T> w = reflect(r.direction, ns);
-        c += trace(outside(w) ? w : reflect(r.direction, ng), m.ks);
-      }
-      return c;
+  if (m.is<material_kinds::emitter>()) return emitted(m, h);
+  if (const auto lm = local_terms(m, h)) {  // lambertian, phong: the local model
+    rgb c = emitted(m, h) + direct_light(sc, lights, sh, wo, g, opt, rays) + sc.ambient * lm->kd;
+    if (lm->ks != rgb(0)) {
+      const vec3_t<T> w = reflect(r.direction, ns);
+      c += trace(outside(w) ? w : reflect(r.direction, ng), lm->ks);
     }
-    case material_kind::fuzzy_metal: {  // fuzz 0: the mirror direction exactly
-      hit_t<T> hs = h;
-      hs.normal = sh.shading_normal;
-      auto s = scatter(m, r.direction, hs, g);
-      if (s && !outside(s->direction)) s = scatter(m, r.direction, h, g);
-      return s ? trace(s->direction, s->weight) : rgb(0);
-    }
-    case material_kind::dielectric: {
-      const T eta = relative_ior(h.front_face, T(m.ior));
-      vec3_t<T> n = ns;
-      auto t = refract(r.direction, n, eta);  // none on total internal reflection
-      if (!outside(reflect(r.direction, n)) || (t && outside(*t))) {
-        n = ng;
-        t = refract(r.direction, n, eta);
-      }
-      const float R = t ? float(fresnel_dielectric(-glm::dot(r.direction, n), eta)) : 1.0f;
-      rgb c = trace(reflect(r.direction, n), rgb(R));
-      if (t) c += trace(*t, rgb(1.0f - R));
-      return c;
-    }
-    case material_kind::rough_conductor:  // refused by check_whitted_scene
-    case material_kind::rough_dielectric:
-      return rgb(0);
+    return c;
   }
-  return rgb(0);
+  if (m.is<material_kinds::fuzzy_metal>()) {  // fuzz 0: the mirror direction exactly
+    hit_t<T> hs = h;
+    hs.normal = sh.shading_normal;
+    auto s = scatter(m, r.direction, hs, g);
+    if (s && !outside(s->direction)) s = scatter(m, r.direction, h, g);
+    return s ? trace(s->direction, s->weight) : rgb(0);
+  }
+  if (const auto* glass = m.get<material_kinds::dielectric>()) {
+    const T eta = relative_ior(h.front_face, T(glass->ior));
+    vec3_t<T> n = ns;
+    auto t = refract(r.direction, n, eta);  // none on total internal reflection
+    if (!outside(reflect(r.direction, n)) || (t && outside(*t))) {
+      n = ng;
+      t = refract(r.direction, n, eta);
+    }
+    const float R = t ? float(fresnel_dielectric(-glm::dot(r.direction, n), eta)) : 1.0f;
+    rgb c = trace(reflect(r.direction, n), rgb(R));
+    if (t) c += trace(*t, rgb(1.0f - R));
+    return c;
+  }
+  return rgb(0);  // the microfacet kinds and custom BSDFs: refused by check_whitted_scene
 }
 // [end]
 
@@ -161,7 +158,7 @@ template <class T> void check_whitted_scene(const scene_t<T>& sc) {
     const material& m = sc.material_of(o);
     if (is_custom(m))
       throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a custom BSDF ('" +
-                  m.bsdf->name() + "'), which the Whitted ray tracer cannot shade; render it with pathtrace");
+                  m.get<material_kinds::custom>()->bsdf->name() + "'), which the Whitted ray tracer cannot shade; render it with pathtrace");
     // A glossy lobe is neither a mirror (one ray) nor a local model (a highlight per light):
     // it needs the integral over directions that path tracing estimates.
     if (is_microfacet(m))
