@@ -30,6 +30,9 @@
 #include <zraka/geometry/spawn.hpp>
 
 #include <cstdint>
+#include <optional>
+#include <type_traits>
+#include <variant>
 
 namespace zraka {
 
@@ -49,6 +52,47 @@ template <class T> std::optional<local_model_terms> local_terms(const material& 
     else return std::nullopt;
   }, m.kind);
 }
+
+// A call to a callable that lives on the caller's stack (a lambda), without copying it.
+template <class R, class... A> class call_ref {
+ public:
+  template <class F> call_ref(F& f) : obj_(&f), call_([](void* o, A... a) -> R { return (*static_cast<F*>(o))(a...); }) {}
+  R operator()(A... a) const { return call_(obj_, a...); }
+
+ private:
+  void* obj_;
+  R (*call_)(void*, A...);
+};
+
+// [listing whitted-vertex]
+// What a material kind's whitted() (materials/) is given at a hit: the ray's direction, the hit,
+// its geometric and shading normals on the ray's side, and the tracer's three ways to shade:
+// the local model with shadow rays (local), a branch of the ray tree (trace), the light the
+// surface gives off (emitted). A kind without whitted() is refused by check_whitted_scene.
+template <class T> struct whitted_vertex {
+  using scalar = T;
+  vec3_t<T> d;         // the incoming ray's direction
+  const hit_t<T>& h;
+  vec3_t<T> ng, ns;    // facing geometric and shading normals
+  vec3_t<T> shading_normal;  // the shading normal as the hit has it (not turned to the ray)
+  rng& g;
+  call_ref<rgb, const vec3_t<T>&, rgb> trace;
+  call_ref<rgb, const local_model_terms&> local;
+  rgb light;  // emitted(m, h)
+
+  bool outside(const vec3_t<T>& w) const { return glm::dot(w, ng) > T(0); }  // above the surface
+  hit_t<T> shading_hit() const {  // the hit with the shading normal (smooth on meshes)
+    hit_t<T> hs = h;
+    hs.normal = shading_normal;
+    return hs;
+  }
+  rgb emitted() const { return light; }
+};
+// [end]
+
+// Does Whitted's tracer shade kind K?
+template <class K> constexpr bool whitted_shades =
+    requires(const K& k, whitted_vertex<double>& w) { k.whitted(w); };
 
 // [listing local-shade]
 // f cos(theta_i) for light arriving from wi: Lambert kd/pi plus the normalised specular lobe,
@@ -111,40 +155,23 @@ rgb whitted_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, const r
     if (depth >= opt.max_depth || !(bw >= opt.min_weight)) return rgb(0);
     return w * whitted_radiance(sc, lights, spawn_ray(h, dir), g, opt, rays, depth + 1, bw);
   };
+  // Lambert and Phong: the local model, and for Phong the mirror ray weighted by ks.
+  auto local = [&](const local_model_terms& lm) {
+    rgb c = emitted(m, h) + direct_light(sc, lights, sh, wo, g, opt, rays) + sc.ambient * lm.kd;
+    if (lm.ks != rgb(0)) {
+      const vec3_t<T> ng = h.facing_normal(), w = reflect(r.direction, sh.facing_shading_normal());
+      c += trace(glm::dot(w, ng) > T(0) ? w : reflect(r.direction, ng), lm.ks);
+    }
+    return c;
+  };
   // Directions bend around the shading normal (smooth on meshes); one that would cross the
   // geometric surface (possible where the two normals differ) falls back to the geometric one.
-  const vec3_t<T> ng = h.facing_normal(), ns = sh.facing_shading_normal();
-  auto outside = [&](const vec3_t<T>& w) { return glm::dot(w, ng) > T(0); };
-  if (m.is<material_kinds::emitter>()) return emitted(m, h);
-  if (const auto lm = local_terms(m, h)) {  // lambertian, phong: the local model
-    rgb c = emitted(m, h) + direct_light(sc, lights, sh, wo, g, opt, rays) + sc.ambient * lm->kd;
-    if (lm->ks != rgb(0)) {
-      const vec3_t<T> w = reflect(r.direction, ns);
-      c += trace(outside(w) ? w : reflect(r.direction, ng), lm->ks);
-    }
-    return c;
-  }
-  if (m.is<material_kinds::fuzzy_metal>()) {  // fuzz 0: the mirror direction exactly
-    hit_t<T> hs = h;
-    hs.normal = sh.shading_normal;
-    auto s = scatter(m, r.direction, hs, g);
-    if (s && !outside(s->direction)) s = scatter(m, r.direction, h, g);
-    return s ? trace(s->direction, s->weight) : rgb(0);
-  }
-  if (const auto* glass = m.get<material_kinds::dielectric>()) {
-    const T eta = relative_ior(h.front_face, T(glass->ior));
-    vec3_t<T> n = ns;
-    auto t = refract(r.direction, n, eta);  // none on total internal reflection
-    if (!outside(reflect(r.direction, n)) || (t && outside(*t))) {
-      n = ng;
-      t = refract(r.direction, n, eta);
-    }
-    const float R = t ? float(fresnel_dielectric(-glm::dot(r.direction, n), eta)) : 1.0f;
-    rgb c = trace(reflect(r.direction, n), rgb(R));
-    if (t) c += trace(*t, rgb(1.0f - R));
-    return c;
-  }
-  return rgb(0);  // the microfacet kinds and custom BSDFs: refused by check_whitted_scene
+  whitted_vertex<T> w{r.direction, h, h.facing_normal(), sh.facing_shading_normal(), sh.shading_normal, g, trace, local,
+                      emitted(m, h)};
+  return std::visit([&](const auto& k) {  // the kind's whitted() (materials/)
+    if constexpr (whitted_shades<std::decay_t<decltype(k)>>) return k.whitted(w);
+    else return rgb(0);  // refused by check_whitted_scene
+  }, m.kind);
 }
 // [end]
 
@@ -164,6 +191,10 @@ template <class T> void check_whitted_scene(const scene_t<T>& sc) {
     if (is_microfacet(m))
       throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a " + kind_name(m.kind) +
                   ", a rough microfacet surface, which the Whitted ray tracer cannot shade; render it with pathtrace");
+    const bool shades = std::visit([](const auto& k) { return whitted_shades<std::decay_t<decltype(k)>>; }, m.kind);
+    if (!shades)  // a kind without whitted() (materials/)
+      throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a " + kind_name(m.kind) +
+                  ", which the Whitted ray tracer cannot shade; render it with pathtrace");
   });
 }
 

@@ -31,6 +31,29 @@ struct dielectric {
     if (t && T(g.uniform()) >= fresnel_dielectric(cos_i, eta)) return scatter_t<T>{*t, rgb(1), T(0), true};
     return scatter_t<T>{reflect(d, n), rgb(1), T(0), true};
   }
+  // [listing whitted-glass]
+  // Whitted (whitted.hpp): both rays, the reflected one weighted by the exact Fresnel R, the
+  // refracted one by 1 - R (none on total internal reflection). About the shading normal,
+  // unless a ray would cross the geometric surface: then about the geometric one.
+  template <class W> rgb whitted(W& w) const {
+    using T = typename W::scalar;
+    const T eta = relative_ior(w.h.front_face, T(ior));
+    vec3_t<T> n = w.ns;
+    auto t = refract(w.d, n, eta);  // none on total internal reflection
+    if (!w.outside(reflect(w.d, n)) || (t && w.outside(*t))) {
+      n = w.ng;
+      t = refract(w.d, n, eta);
+    }
+    const float R = t ? float(fresnel_dielectric(-glm::dot(w.d, n), eta)) : 1.0f;
+    rgb c = w.trace(reflect(w.d, n), rgb(R));
+    if (t) c += w.trace(*t, rgb(1.0f - R));
+    return c;
+  }
+  // [end]
+
+  static constexpr int gpu_kind = 2;  // KIND_DIELECTRIC
+  template <class Packer> void pack(Packer& p) const { p.record.ior = float(ior); }
+
   // Light crosses it unchanged (media.hpp lets paths and shadow rays through) unless it glows.
   bool index_matched() const { return ior == 1.0; }
 

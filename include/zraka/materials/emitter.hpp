@@ -5,6 +5,7 @@
 #include <zraka/core/hit.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/materials/scatter.hpp>
+#include <zraka/textures/texture.hpp>
 
 #include <optional>
 #include <string>
@@ -21,6 +22,11 @@ struct emitter {
   template <class T> std::optional<scatter_t<T>> scatter(const vec3_t<T>&, const hit_t<T>&, rng&) const {
     return std::nullopt;  // absorbed: draws no number
   }
+
+  // Whitted (whitted.hpp) sees its light only; the kernel (KIND_EMITTER) packs it black.
+  template <class W> rgb whitted(W& w) const { return w.emitted(); }
+  static constexpr int gpu_kind = 3;
+  template <class Packer> void pack(Packer& p) const { p.albedo(texture::solid(rgb(0))); }
 
   static std::vector<std::string> keys() { return {"radiance"}; }
   template <class Node> static emitter read(const Node& n, material_common& c) {

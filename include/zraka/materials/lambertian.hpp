@@ -49,6 +49,12 @@ struct lambertian {
   template <class T> local_model_terms local_model(const hit_t<T>& h) const {
     return {evaluate(albedo, h.p, h.facing_normal(), h.uv), rgb(0), 32};
   }
+  template <class W> rgb whitted(W& w) const { return w.local(local_model(w.h)); }
+
+  // The OpenCL kernel (kernels/pathtrace.cl, KIND_LAMBERTIAN) reads its albedo; Packer is
+  // gpu_scene.hpp's, which fills the packed record.
+  static constexpr int gpu_kind = 0;
+  template <class Packer> void pack(Packer& p) const { p.albedo(albedo); }
 
   // Scene file: {type: lambertian, albedo: colour or texture} (scenes/README.md). Node is the
   // scene file's scene_node (io/scene_file.hpp), Writer its resolved-scene or export writer.

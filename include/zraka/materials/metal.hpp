@@ -34,6 +34,22 @@ struct fuzzy_metal {
     return scatter_t<T>{*wi, evaluate(albedo, h.p, n, h.uv), T(0), true};
   }
 
+  // [listing whitted-metal]
+  // Whitted (whitted.hpp): one ray, about the shading normal; one that would cross the
+  // geometric surface (where the two normals differ) is drawn again about the geometric one.
+  template <class W> rgb whitted(W& w) const {
+    auto s = scatter(w.d, w.shading_hit(), w.g);
+    if (s && !w.outside(s->direction)) s = scatter(w.d, w.h, w.g);
+    return s ? w.trace(s->direction, s->weight) : rgb(0);
+  }
+  // [end]
+
+  static constexpr int gpu_kind = 1;  // KIND_METAL
+  template <class Packer> void pack(Packer& p) const {
+    p.albedo(albedo);
+    p.record.fuzz = float(fuzz);
+  }
+
   static std::vector<std::string> keys() { return {"albedo", "fuzz"}; }
   template <class Node> static fuzzy_metal read(const Node& n, material_common&) {
     fuzzy_metal k;

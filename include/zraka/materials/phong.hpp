@@ -42,6 +42,14 @@ struct phong {
     return brdf(h).pdf(wi, wo, h.facing_normal());
   }
   template <class T> local_model_terms local_model(const hit_t<T>&) const { return {kd, ks, shininess}; }
+  template <class W> rgb whitted(W& w) const { return w.local(local_model(w.h)); }
+
+  static constexpr int gpu_kind = 4;  // KIND_PHONG: kd and ks travel in the albedo's two colours
+  template <class Packer> void pack(Packer& p) const {
+    p.record.albedo_a = p.colour(kd);
+    p.record.albedo_b = p.colour(ks);
+    p.record.shininess = float(shininess);
+  }
 
   static std::vector<std::string> keys() { return {"kd", "ks", "shininess"}; }
   template <class Node> static phong read(const Node& n, material_common&) {

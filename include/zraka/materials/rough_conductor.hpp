@@ -44,6 +44,14 @@ struct rough_conductor {
     return bsdf(h).pdf(b.to_local(wo), b.to_local(wi));
   }
 
+  static constexpr int gpu_kind = 5;  // KIND_ROUGH_CONDUCTOR
+  template <class Packer> void pack(Packer& p) const {
+    roughness.pack(p);
+    p.record.schlick = conductor.schlick ? 1 : 0;  // Schlick's F0 travels in eta
+    p.record.eta = p.colour(conductor.schlick ? conductor.f0 : conductor.eta);
+    p.record.k = p.colour(conductor.k);
+  }
+
   static std::vector<std::string> keys() { return {"roughness", "metal", "eta", "k", "f0"}; }
   // [listing scene-rough-conductor]
   // At most one of: metal (a preset of microfacet.hpp), eta and k (the complex index per

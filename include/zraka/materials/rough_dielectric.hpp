@@ -46,6 +46,12 @@ struct rough_dielectric {
     return bsdf(h).pdf(b.to_local(wo), b.to_local(wi));
   }
 
+  static constexpr int gpu_kind = 6;  // KIND_ROUGH_DIELECTRIC
+  template <class Packer> void pack(Packer& p) const {
+    roughness.pack(p);
+    p.record.ior = float(ior);
+  }
+
   static std::vector<std::string> keys() { return {"roughness", "ior"}; }
   template <class Node> static rough_dielectric read(const Node& n, material_common&) {
     rough_dielectric k;

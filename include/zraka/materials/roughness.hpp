@@ -25,6 +25,12 @@ struct ggx_roughness {
   }
   // [end]
 
+  // The kernel's record: alpha, or the index of the texture record of its map.
+  template <class Packer> void pack(Packer& p) const {
+    p.record.roughness = float(alpha);
+    if (map) p.record.roughness_texture = p.texture(*map);
+  }
+
   // `roughness:` a number, or a texture as for albedo whose channels' mean is alpha.
   template <class Node> static ggx_roughness read(const Node& n) {
     ggx_roughness r;
