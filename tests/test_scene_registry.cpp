@@ -124,7 +124,7 @@ TEST_CASE("scene registry: unknown types list the built-in and the registered na
         "mesh or bezier; registered: disk)");
   CHECK(parse_error("materials: {m: {type: glosy}}\nobjects: [{type: disk}]") ==
         "t.yaml:1:23: materials.m.type: unknown material type 'glosy' (expected lambertian, metal, dielectric, "
-        "emitter, phong, rough_conductor, rough_dielectric or boundary; registered: glossy)");
+        "emitter, phong, rough_conductor, rough_dielectric, boundary or conductor; registered: glossy)");
   // Without registered types the list is the built-in one alone.
   CHECK(error_of([] { (void)parse_scene("objects: [{type: disk}]", "t.yaml"); }) ==
         "t.yaml:1:18: objects[0].type: unknown object type 'disk' (expected sphere, plane, triangle, quad, box, "
@@ -191,7 +191,7 @@ TEST_CASE("scene registry: names that shadow built-in types, repeats and bad nam
   for (const std::string& t : builtin_object_types())
     CHECK(error_of([&] { reg.add_shape(t, {}, shape); }) ==
           "scene registry: object type '" + t + "' is built in; a registered type must have a new name");
-  REQUIRE(reg.builtin_materials().size() == 8);  // registered by materials/builtin.hpp
+  REQUIRE(reg.builtin_materials().size() == 9);  // registered by materials/builtin.hpp
   for (const std::string& t : reg.builtin_materials())
     CHECK(error_of([&] { reg.add_material(t, {}, mat); }) ==
           "scene registry: material type '" + t + "' is built in; a registered type must have a new name");

@@ -30,6 +30,7 @@ template <class Registry> void register_builtin_materials(Registry& r) {
     m.kind = dielectric::read_boundary(n, m);
     return m;
   });
+  r.add_material("conductor", conductor::keys(), [](const auto& n) { return read_material<conductor>(n); });
 }
 // [end]
 

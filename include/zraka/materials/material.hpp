@@ -21,6 +21,7 @@
 #include <zraka/core/error.hpp>
 #include <zraka/core/hit.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/materials/conductor.hpp>
 #include <zraka/materials/custom.hpp>
 #include <zraka/materials/dielectric.hpp>
 #include <zraka/materials/emitter.hpp>
@@ -45,7 +46,7 @@ namespace zraka {
 using material_kind = std::variant<material_kinds::lambertian, material_kinds::fuzzy_metal,
                                    material_kinds::dielectric, material_kinds::emitter, material_kinds::phong,
                                    material_kinds::rough_conductor, material_kinds::rough_dielectric,
-                                   material_kinds::custom>;
+                                   material_kinds::conductor, material_kinds::custom>;
 
 struct material : material_common {
   material_kind kind;  // lambertian of albedo 0.8 by default

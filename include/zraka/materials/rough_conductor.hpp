@@ -59,35 +59,40 @@ struct rough_conductor {
   template <class Node> static rough_conductor read(const Node& n, material_common&) {
     rough_conductor k;
     k.roughness = ggx_roughness::read(n);
+    k.conductor = read_fresnel(n, "rough_conductor");
+    return k;
+  }
+  template <class Node> static conductor_fresnel read_fresnel(const Node& n, const std::string& kind) {
     const int given = (n.has("metal") ? 1 : 0) + (n.has("eta") || n.has("k") ? 1 : 0) + (n.has("f0") ? 1 : 0);
-    if (given > 1) n.fail("a rough_conductor takes one of: metal, eta and k, f0");
-    if (!given) {
-      k.conductor = *find_metal("silver");
-    } else if (n.has("metal")) {
+    if (given > 1) n.fail("a " + kind + " takes one of: metal, eta and k, f0");
+    if (!given) return *find_metal("silver");
+    if (n.has("metal")) {
       const std::string metal = n.text("metal", "");
       const auto f = find_metal(metal);
       if (!f) n.fail("metal", "unknown metal '" + metal + "' (expected " + metal_names() + ")");
-      k.conductor = *f;
-    } else if (n.has("f0")) {
+      return *f;
+    }
+    if (n.has("f0")) {
       const rgb f0 = n.colour("f0");
       if (max_component(f0) > 1) n.fail("f0", "a reflectance must be at most 1");
-      k.conductor = conductor_fresnel::from_f0(f0);
-    } else {
-      const rgb eta = n.colour("eta"), kk = n.colour("k");
-      if (!(eta.x > 0 && eta.y > 0 && eta.z > 0)) n.fail("eta", "must be positive");
-      k.conductor = conductor_fresnel::complex_ior(eta, kk);
+      return conductor_fresnel::from_f0(f0);
     }
-    return k;
+    const rgb eta = n.colour("eta"), k = n.colour("k");
+    if (!(eta.x > 0 && eta.y > 0 && eta.z > 0)) n.fail("eta", "must be positive");
+    return conductor_fresnel::complex_ior(eta, k);
   }
   // [end]
-  // A preset is written as its numbers.
   template <class Writer> void write(Writer& w, const material_common&) const {
     roughness.write(w);
-    if (conductor.schlick) {
-      w.colour("f0", conductor.f0);
+    write_fresnel(w, conductor);
+  }
+  // A preset is written as its numbers.
+  template <class Writer> static void write_fresnel(Writer& w, const conductor_fresnel& f) {
+    if (f.schlick) {
+      w.colour("f0", f.f0);
     } else {
-      w.colour("eta", conductor.eta);
-      w.colour("k", conductor.k);
+      w.colour("eta", f.eta);
+      w.colour("k", f.k);
     }
   }
 };
