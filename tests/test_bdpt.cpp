@@ -26,7 +26,7 @@ namespace {
 scene point_lit_box() {
   scene sc = cornell_box<double>(cornell_variant::boxes);
   for (material& m : sc.materials)
-    if (m.kind == material_kind::emitter) m.radiance = rgb(0);  // the quad stays, dark
+    if (m.is<material_kinds::emitter>()) m.radiance = rgb(0);  // the quad stays, dark
   sc.add(point_light_t<double>{{0.1, 1.7, 0.2}, rgb(2.0f)});
   return sc;
 }
@@ -82,7 +82,7 @@ TEST_CASE("bdpt: every strategy alone (unweighted) converges to the same image o
   // A large ceiling light, so that s = 0 (the camera path must hit it) has no heavy tails.
   scene big = cornell_box<double>(cornell_variant::boxes);
   for (auto& q : big.quads)
-    if (big.materials[std::size_t(q.material)].kind == material_kind::emitter) {
+    if (big.materials[std::size_t(q.material)].is<material_kinds::emitter>()) {
       q.shape = quad{{-0.8, 1.98, -0.8}, {1.6, 0, 0}, {0, 0, 1.6}};
       big.materials[std::size_t(q.material)].radiance = rgb(2.0f, 1.5f, 1.0f);
     }

@@ -80,9 +80,9 @@ TEST_CASE("custom_bsdf: a custom Lambert gives the built-in Lambert's paths bit 
   }
 }
 
-TEST_CASE("custom_bsdf: the material functions call the BSDF, and the kind stays lambertian") {
+TEST_CASE("custom_bsdf: the material functions call the BSDF, of the kind custom") {
   const material m = material::custom(std::make_shared<my_lambert>(vec3(0.5)));
-  CHECK(m.kind == material_kind::lambertian);
+  CHECK(m.is<material_kinds::custom>());
   CHECK_FALSE(is_specular(m));
   hit h;
   h.p = vec3(0);

@@ -65,7 +65,7 @@ TEST_CASE("a checker in uv: the material says 2 (world: 1), and only then HAS_UV
   CHECK_FALSE(has(build_options(pack_scene(spheres_scene(), 16, 16, depth(4)).features), "-DHAS_UV_CHECKER"));
   // As a roughness map it is a texture record of its own kind.
   material rough = material::rough_conductor(0.2, *find_metal("gold"));
-  rough.roughness_map = texture::checker_uv(rgb(0.1f), rgb(0.5f), 0.5);
+  rough.get<material_kinds::rough_conductor>()->roughness.map = texture::checker_uv(rgb(0.1f), rgb(0.5f), 0.5);
   sc.add(sphere{{-2, 0, -3}, 1}, sc.add_material(rough));
   const gpu_scene r = pack_scene(sc, 16, 16, depth(4));
   REQUIRE(r.textures.size() == 1);
@@ -294,7 +294,7 @@ TEST_CASE("image and noise textures: texels as linear floats, a record per textu
     for (int x = 0; x < 3; ++x) img->at(x, y) = rgb(0.1f * float(x), 0.5f * float(y), 0.25f);
   const int grid = sc.add_material(material::lambertian(texture::image_map(img, false, "grid.png")));
   material rough = material::rough_conductor(0.3, *find_metal("silver"));
-  rough.roughness_map = texture::noise(rgb(0.05f), rgb(0.4f), 3.0, 3, false);
+  rough.get<material_kinds::rough_conductor>()->roughness.map = texture::noise(rgb(0.05f), rgb(0.4f), 3.0, 3, false);
   const int metal = sc.add_material(rough);
   sc.add(quad{{-1, -1, -3}, {2, 0, 0}, {0, 2, 0}}, grid);
   mesh m;  // one triangle with texture coordinates

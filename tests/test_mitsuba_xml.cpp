@@ -34,6 +34,12 @@ loaded_scene parse_xml(const std::string& text, const fs::path& dir = ".") {
   return parse_scene(mitsuba_xml_to_yaml(text, "t.xml", dir), "t.yaml", dir);
 }
 bool near(const vec3& a, const vec3& b, double tol = 1e-12) { return glm::length(a - b) <= tol; }
+// The colour of a material that has an albedo (lambertian, metal); -1 for the others.
+rgb albedo_a(const material& m) {
+  if (const auto* k = m.get<material_kinds::lambertian>()) return k->albedo.a;
+  if (const auto* k = m.get<material_kinds::fuzzy_metal>()) return k->albedo.a;
+  return rgb(-1);
+}
 
 }  // namespace
 
@@ -63,7 +69,7 @@ TEST_CASE("Mitsuba XML: the Cornell box of scenes/mitsuba is scenes/cornell.yaml
       const vec3 cy = qy.shape.corner + 0.5 * (qy.shape.u + qy.shape.v), ny = glm::cross(qy.shape.u, qy.shape.v);
       const material& mx = x.materials[std::size_t(qx.material)];
       const material& my = y.materials[std::size_t(qy.material)];
-      if (near(cx, cy, 1e-9) && near(nx, ny, 1e-9) && mx.kind == my.kind && mx.albedo.a == my.albedo.a &&
+      if (near(cx, cy, 1e-9) && near(nx, ny, 1e-9) && mx.kind.index() == my.kind.index() && albedo_a(mx) == albedo_a(my) &&
           mx.radiance == my.radiance)
         ++matches;
     }
@@ -88,12 +94,12 @@ TEST_CASE("Mitsuba XML: the scenes of scenes/mitsuba load, and their YAML loads 
   // bk7 in air, Mitsuba's defaults; water inside air for the rough glass.
   int glass = 0;
   for (const material& mat : m.sc.materials) {
-    if (mat.kind == material_kind::dielectric) {
-      CHECK(mat.ior == doctest::Approx(1.5046 / 1.000277));
+    if (mat.is<material_kinds::dielectric>()) {
+      CHECK(mat.get<material_kinds::dielectric>()->ior == doctest::Approx(1.5046 / 1.000277));
       ++glass;
     }
-    if (mat.kind == material_kind::rough_dielectric) {
-      CHECK(mat.ior == doctest::Approx(1.333 / 1.000277));
+    if (mat.is<material_kinds::rough_dielectric>()) {
+      CHECK(mat.get<material_kinds::rough_dielectric>()->ior == doctest::Approx(1.333 / 1.000277));
       ++glass;
     }
   }
@@ -101,13 +107,13 @@ TEST_CASE("Mitsuba XML: the scenes of scenes/mitsuba load, and their YAML loads 
   // The checkerboard: zraka's checker in uv, cells 1/2 / to_uv's scale 4, even cells color0.
   const loaded_scene c = load_scene_argument("scenes/mitsuba/checkerboard.xml");
   REQUIRE(c.sc.quads.size() == 2);
-  const texture& t = c.sc.material_of({shape_kind::quad, 0}).albedo;
+  const texture& t = c.sc.material_of({shape_kind::quad, 0}).get<material_kinds::lambertian>()->albedo;
   CHECK(t.type == texture::kind::checker);
   CHECK(t.uv_space);
   CHECK(t.cell == doctest::Approx(0.125));
   CHECK(t.a == rgb(0.8f, 0.2f, 0.1f));
   CHECK(t.b == rgb(0.1f, 0.3f, 0.7f));
-  const texture& d = c.sc.material_of({shape_kind::quad, 1}).albedo;  // Mitsuba's defaults
+  const texture& d = c.sc.material_of({shape_kind::quad, 1}).get<material_kinds::lambertian>()->albedo;  // Mitsuba's defaults
   CHECK(d.cell == doctest::Approx(0.5));
   CHECK(d.a == rgb(0.4f));
   CHECK(d.b == rgb(0.2f));
@@ -119,9 +125,10 @@ TEST_CASE("Mitsuba XML: a bitmap on a rectangle: zraka's image texture, the quad
   const scene sc = load_scene_argument("scenes/mitsuba/bitmap.xml").sc;
   REQUIRE(sc.quads.size() == 1);
   const material& m = sc.materials[std::size_t(sc.quads[0].material)];
-  CHECK(m.albedo.type == texture::kind::image);
-  CHECK(m.albedo.srgb);
-  CHECK(m.albedo.repeat);
+  REQUIRE(m.get<material_kinds::lambertian>());
+  CHECK(m.get<material_kinds::lambertian>()->albedo.type == texture::kind::image);
+  CHECK(m.get<material_kinds::lambertian>()->albedo.srgb);
+  CHECK(m.get<material_kinds::lambertian>()->albedo.repeat);
   // to_world: scale 1.2 x 0.9, then 10 degrees about z. Mitsuba's (u, v) = (0, 0) is the corner
   // (-1, -1) in the shape's space and shows the image's top-left texel; zraka's uv (0, 0) shows
   // the bottom-left one, so the quad starts at (-1, +1) and runs v down.
@@ -284,7 +291,7 @@ TEST_CASE("Mitsuba XML: a disk, read through the program's registered disk shape
   CHECK(near(d->c, vec3(1, 3, 0), 1e-12));
   CHECK(near(d->n, vec3(0, -1, 0), 1e-12));
   CHECK(d->r == doctest::Approx(2.0));
-  CHECK(ls.sc.material_of({shape_kind::user, 0}).kind == material_kind::emitter);
+  CHECK(ls.sc.material_of({shape_kind::user, 0}).is<material_kinds::emitter>());
   // A shear or a non-uniform scale would make an ellipse: refused at the transform.
   const std::string squashed = scene_xml("<shape type=\"disk\"><transform name=\"to_world\"><scale x=\"2\"/></transform>"
                                          "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/></bsdf></shape>");

@@ -115,7 +115,7 @@ scene rough_conductor_scene() {
   const int gold = sc.add_material(material::rough_conductor(0.25, *find_metal("gold")));
   const int f0 = sc.add_material(material::rough_conductor(0.05, conductor_fresnel::from_f0(rgb(0.9f, 0.6f, 0.4f))));
   material mapped = material::rough_conductor(0.3, *find_metal("copper"));
-  mapped.roughness_map = texture::checker(rgb(0.02f), rgb(0.6f), 0.2);
+  mapped.get<material_kinds::rough_conductor>()->roughness.map = texture::checker(rgb(0.02f), rgb(0.6f), 0.2);
   const int copper = sc.add_material(mapped);
   sc.add(sphere{{-0.9, 0.4, 0}, 0.4}, gold);
   sc.add(sphere{{0, 0.4, -0.3}, 0.4}, f0);
@@ -164,7 +164,7 @@ scene uv_checker_scene() {
   scene sc = stage(material::lambertian(texture::checker_uv(rgb(0.9f, 0.3f, 0.1f), rgb(0.1f, 0.3f, 0.8f), 0.25)), 1, 2.2,
                    rgb(5.0f), rgb(0.05f), {0.4, 1.6, 3}, {0, 0.3, 0});
   material rough = material::rough_conductor(0.3, *find_metal("copper"));
-  rough.roughness_map = texture::checker_uv(rgb(0.05f), rgb(0.6f), 0.25);
+  rough.get<material_kinds::rough_conductor>()->roughness.map = texture::checker_uv(rgb(0.05f), rgb(0.6f), 0.25);
   sc.add(sphere{{0, 0.5, 0}, 0.5}, sc.add_material(rough));
   return sc;
 }
@@ -605,7 +605,7 @@ TEST_CASE("the kernel's microfacets: f, pdf and samples as microfacet.hpp's, gra
     std::optional<microfacet_sample_t<double>> sm;
     const vec2 u(double(float(c.ux)), double(float(c.uy)));
     if (c.kind == 0) {
-      const rough_conductor_t<double> m{d, gold.conductor};
+      const rough_conductor_t<double> m{d, gold.get<material_kinds::rough_conductor>()->conductor};
       f = m.f(wo, wi);
       pdf = m.pdf(wo, wi);
       sm = m.sample(wo, u);

@@ -56,8 +56,8 @@ TEST_CASE("scene file: a scene of one sphere has every default of the structs") 
   CHECK(sc.camera.up == cam.up);
   CHECK(sc.camera.vfov_degrees == cam.vfov_degrees);
   REQUIRE(sc.materials.size() == 1);  // "default"
-  CHECK(sc.materials[0].kind == material_kind::lambertian);
-  CHECK(sc.materials[0].albedo.a == material{}.albedo.a);
+  CHECK(sc.materials[0].is<material_kinds::lambertian>());
+  CHECK(sc.materials[0].get<material_kinds::lambertian>()->albedo.a == material_kinds::lambertian{}.albedo.a);
   REQUIRE(sc.spheres.size() == 1);
   CHECK(sc.spheres[0].shape.center == vec3(0));
   CHECK(sc.spheres[0].shape.radius == scene_file_defaults::sphere_radius);
@@ -111,18 +111,18 @@ objects:
   // Materials: default, the five, and one per area light.
   REQUIRE(sc.materials.size() == 8);
   const material& lam = sc.materials[1];
-  CHECK(lam.albedo.type == texture::kind::checker);
-  CHECK(lam.albedo.a == rgb(1, 0, 0));
-  CHECK(lam.albedo.b == rgb(0.5f));
-  CHECK(lam.albedo.cell == 0.25);
-  CHECK(sc.materials[2].kind == material_kind::fuzzy_metal);
-  CHECK(sc.materials[2].albedo.a == rgb(0.9f, 0.8f, 0.7f));
-  CHECK(sc.materials[2].fuzz == 0.3);
-  CHECK(sc.materials[3].ior == 1.7);
+  CHECK(lam.get<material_kinds::lambertian>()->albedo.type == texture::kind::checker);
+  CHECK(lam.get<material_kinds::lambertian>()->albedo.a == rgb(1, 0, 0));
+  CHECK(lam.get<material_kinds::lambertian>()->albedo.b == rgb(0.5f));
+  CHECK(lam.get<material_kinds::lambertian>()->albedo.cell == 0.25);
+  CHECK(sc.materials[2].is<material_kinds::fuzzy_metal>());
+  CHECK(sc.materials[2].get<material_kinds::fuzzy_metal>()->albedo.a == rgb(0.9f, 0.8f, 0.7f));
+  CHECK(sc.materials[2].get<material_kinds::fuzzy_metal>()->fuzz == 0.3);
+  CHECK(sc.materials[3].get<material_kinds::dielectric>()->ior == 1.7);
   CHECK(sc.materials[4].radiance == rgb(5, 6, 7));
-  CHECK(sc.materials[5].kd == rgb(0.1f, 0.2f, 0.3f));
-  CHECK(sc.materials[5].ks == rgb(0.4f));
-  CHECK(sc.materials[5].shininess == 12);
+  CHECK(sc.materials[5].get<material_kinds::phong>()->kd == rgb(0.1f, 0.2f, 0.3f));
+  CHECK(sc.materials[5].get<material_kinds::phong>()->ks == rgb(0.4f));
+  CHECK(sc.materials[5].get<material_kinds::phong>()->shininess == 12);
   CHECK(sc.materials[6].radiance == rgb(8));
   CHECK(sc.materials[7].radiance == rgb(9));
   REQUIRE(sc.point_lights.size() == 1);

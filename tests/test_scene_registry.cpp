@@ -96,7 +96,7 @@ objects:
 )");
   const double expected = mycourse::glossy(vec3(0.2), vec3(0.7), 20).normal_albedo().x;
   REQUIRE(is_custom(ls.sc.materials[1]));
-  CHECK(ls.sc.materials[1].bsdf->name() == "glossy");
+  CHECK(ls.sc.materials[1].get<material_kinds::custom>()->bsdf->name() == "glossy");
   const ray r(vec3(0, 2, 0), vec3(0, -1, 0));
   for (integrator m : all_methods) {
     const estimator e = along(ls.sc, m, r);
@@ -124,7 +124,7 @@ TEST_CASE("scene registry: unknown types list the built-in and the registered na
         "mesh or bezier; registered: disk)");
   CHECK(parse_error("materials: {m: {type: glosy}}\nobjects: [{type: disk}]") ==
         "t.yaml:1:23: materials.m.type: unknown material type 'glosy' (expected lambertian, metal, dielectric, "
-        "emitter, phong, rough_conductor, rough_dielectric or boundary; registered: glossy)");
+        "emitter, phong, rough_conductor, rough_dielectric, boundary or conductor; registered: glossy)");
   // Without registered types the list is the built-in one alone.
   CHECK(error_of([] { (void)parse_scene("objects: [{type: disk}]", "t.yaml"); }) ==
         "t.yaml:1:18: objects[0].type: unknown object type 'disk' (expected sphere, plane, triangle, quad, box, "
@@ -191,7 +191,8 @@ TEST_CASE("scene registry: names that shadow built-in types, repeats and bad nam
   for (const std::string& t : builtin_object_types())
     CHECK(error_of([&] { reg.add_shape(t, {}, shape); }) ==
           "scene registry: object type '" + t + "' is built in; a registered type must have a new name");
-  for (const std::string& t : builtin_material_types())
+  REQUIRE(reg.builtin_materials().size() == 9);  // registered by materials/builtin.hpp
+  for (const std::string& t : reg.builtin_materials())
     CHECK(error_of([&] { reg.add_material(t, {}, mat); }) ==
           "scene registry: material type '" + t + "' is built in; a registered type must have a new name");
   reg.add_shape("disk", {}, shape);
@@ -214,7 +215,8 @@ TEST_CASE("scene registry: the built-in lists are the types the loader knows") {
     const std::string e = error_of([&] { (void)parse_scene("objects: [{type: " + t + "}]", "t.yaml"); });
     CHECK_MESSAGE(e.find("unknown object type") == std::string::npos, t << ": " << e);
   }
-  for (const std::string& t : builtin_material_types()) {
+  const scene_registry builtins;
+  for (const std::string& t : builtins.builtin_materials()) {
     const std::string e =
         error_of([&] { (void)parse_scene("materials: {m: {type: " + t + "}}\nobjects: [{type: sphere}]", "t.yaml"); });
     // Known: no error, or only a field it requires (a boundary names its medium).

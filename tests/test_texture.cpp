@@ -154,14 +154,14 @@ TEST_CASE("texture: scene files read image and noise textures, and name what is 
     return load_scene_file(dir / "s.yaml");
   };
   const loaded_scene img = load("{image: {file: wood.png, wrap: clamp}}");
-  const texture& t = img.sc.materials[1].albedo;
+  const texture& t = img.sc.materials[1].get<material_kinds::lambertian>()->albedo;
   CHECK(t.type == texture::kind::image);
   CHECK(t.map->width == 4);
   CHECK(!t.repeat);
   CHECK(img.resolved.find("image: {file: wood.png, srgb: true, wrap: clamp}") != std::string::npos);
   const loaded_scene mar = load("{noise: {frequency: 2, octaves: 6, marble: true}}");
-  CHECK(mar.sc.materials[1].albedo.type == texture::kind::noise);
-  CHECK(mar.sc.materials[1].albedo.octaves == 6);
+  CHECK(mar.sc.materials[1].get<material_kinds::lambertian>()->albedo.type == texture::kind::noise);
+  CHECK(mar.sc.materials[1].get<material_kinds::lambertian>()->albedo.octaves == 6);
   CHECK_THROWS_WITH_AS(load("{image: {file: nope.png}}"), doctest::Contains("materials.m.albedo.image.file"), error);
   CHECK_THROWS_WITH_AS(load("{image: {file: wood.png, wrap: mirror}}"), doctest::Contains("must be repeat or clamp"), error);
   CHECK_THROWS_WITH_AS(load("{image: {file: wood.png, srgb: maybe}}"), doctest::Contains("expected true or false"), error);
@@ -169,10 +169,10 @@ TEST_CASE("texture: scene files read image and noise textures, and name what is 
   CHECK_THROWS_WITH_AS(load("{noise: {frequency: -1}}"), doctest::Contains("must be in (0, 1e6]"), error);
   CHECK_THROWS_WITH_AS(load("{noise: {colour: 1}}"), doctest::Contains("unknown key"), error);
   const loaded_scene uv = load("{checker: {even: 0.9, odd: 0.1, scale: 0.25, space: uv}}");
-  CHECK(uv.sc.materials[1].albedo.uv_space);
-  CHECK(uv.sc.materials[1].albedo.cell == 0.25);
+  CHECK(uv.sc.materials[1].get<material_kinds::lambertian>()->albedo.uv_space);
+  CHECK(uv.sc.materials[1].get<material_kinds::lambertian>()->albedo.cell == 0.25);
   CHECK(uv.resolved.find("space: uv") != std::string::npos);
-  CHECK_FALSE(load("{checker: {space: world}}").sc.materials[1].albedo.uv_space);
+  CHECK_FALSE(load("{checker: {space: world}}").sc.materials[1].get<material_kinds::lambertian>()->albedo.uv_space);
   CHECK(load("{checker: {}}").resolved.find("space") == std::string::npos);  // world is the default, not printed
   CHECK_THROWS_WITH_AS(load("{checker: {space: xyz}}"), doctest::Contains("materials.m.albedo.checker.space: must be world or uv"),
                        error);
@@ -185,21 +185,21 @@ TEST_CASE("texture: a roughness texture sets the GGX alpha point by point, kept 
   const vec3 wo = glm::normalize(vec3(0.3, 1, 0)), wi = glm::normalize(vec3(-0.5, 1, 0.2));
   const material plain = material::rough_conductor(0.3, conductor_fresnel::from_f0(rgb(0.9f)));
   material textured = plain;
-  textured.roughness = 0.7;  // ignored once a map is set
-  textured.roughness_map = texture::solid(rgb(0.2f, 0.3f, 0.4f));  // mean 0.3
-  CHECK(alpha_at(textured, h) == doctest::Approx(0.3).epsilon(1e-7));
+  textured.get<material_kinds::rough_conductor>()->roughness.alpha = 0.7;  // ignored once a map is set
+  textured.get<material_kinds::rough_conductor>()->roughness.map = texture::solid(rgb(0.2f, 0.3f, 0.4f));  // mean 0.3
+  CHECK(textured.get<material_kinds::rough_conductor>()->roughness.at(h) == doctest::Approx(0.3).epsilon(1e-7));
   CHECK(brdf_cos(textured, h, wo, wi).x == doctest::Approx(brdf_cos(plain, h, wo, wi).x).epsilon(1e-6));
   CHECK(scatter_pdf(textured, h, wo, wi) == doctest::Approx(scatter_pdf(plain, h, wo, wi)).epsilon(1e-6));
   // A checker of two alphas: each cell is its own roughness; a black texel is not a mirror.
-  textured.roughness_map = texture::checker(rgb(0.05f), rgb(1.0f), 1.0);
+  textured.get<material_kinds::rough_conductor>()->roughness.map = texture::checker(rgb(0.05f), rgb(1.0f), 1.0);
   h.p = vec3(0.5, 0, 0.5);
-  const double a0 = alpha_at(textured, h);
+  const double a0 = textured.get<material_kinds::rough_conductor>()->roughness.at(h);
   h.p = vec3(1.5, 0, 0.5);
-  const double a1 = alpha_at(textured, h);
+  const double a1 = textured.get<material_kinds::rough_conductor>()->roughness.at(h);
   CHECK(std::min(a0, a1) == doctest::Approx(0.05).epsilon(1e-6));
   CHECK(std::max(a0, a1) == 1.0);
-  textured.roughness_map = texture::solid(rgb(0));
-  CHECK(alpha_at(textured, h) == 1e-3);
+  textured.get<material_kinds::rough_conductor>()->roughness.map = texture::solid(rgb(0));
+  CHECK(textured.get<material_kinds::rough_conductor>()->roughness.at(h) == 1e-3);
   CHECK(std::isfinite(brdf_cos(textured, h, wo, wi).x));
   // In a scene file: a texture where a number would be, or an error naming the field.
   const auto dir = std::filesystem::temp_directory_path() / "zraka-test-roughness-texture";
@@ -210,10 +210,10 @@ TEST_CASE("texture: a roughness texture sets the GGX alpha point by point, kept 
     return load_scene_file(dir / "s.yaml");
   };
   const loaded_scene ls = load("{noise: {low: 0.05, high: 0.5, frequency: 3}}");
-  REQUIRE(ls.sc.materials[1].roughness_map);
-  CHECK(ls.sc.materials[1].roughness_map->type == texture::kind::noise);
+  REQUIRE(ls.sc.materials[1].get<material_kinds::rough_conductor>()->roughness.map);
+  CHECK(ls.sc.materials[1].get<material_kinds::rough_conductor>()->roughness.map->type == texture::kind::noise);
   CHECK(ls.resolved.find("roughness: {noise: {low: [0.05") != std::string::npos);
-  CHECK(!load("0.25").sc.materials[1].roughness_map);
+  CHECK(!load("0.25").sc.materials[1].get<material_kinds::rough_conductor>()->roughness.map);
   CHECK_THROWS_WITH_AS(load("{checker: {even: 1.5}}"), doctest::Contains("materials.m.roughness: the texture's values are GGX alphas"), error);
   CHECK_THROWS_WITH_AS(load("{noise: {low: 0}}"), doctest::Contains("must be in (0, 1]"), error);
   CHECK_THROWS_WITH_AS(load("{marble: 1}"), doctest::Contains("materials.m.roughness"), error);

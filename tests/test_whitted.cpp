@@ -46,13 +46,14 @@ TEST_CASE("whitted: a lit sphere's pixels equal the closed-form Phong value") {
             const vec3 p = r.at(-b - std::sqrt(b * b - c)), n = p;
             const vec3 to = vec3(2, 3, 4) - p;
             const vec3 l = glm::normalize(to), v = -r.direction;
-            const double nl = glm::dot(n, l), s = m.shininess;
+            const auto* ph = m.get<material_kinds::phong>();  // else a lambertian: phong's default exponent, ks 0
+            const double nl = glm::dot(n, l), s = ph ? ph->shininess : material_kinds::phong{}.shininess;
             if (nl > 0) {
               const double spec = model == local_model::phong
                                       ? (s + 2) / (2 * pi<double>) * std::pow(std::max(0.0, glm::dot(v, 2 * nl * n - l)), s)
                                       : (s + 8) / (8 * pi<double>) * std::pow(std::max(0.0, glm::dot(n, glm::normalize(l + v))), s);
-              const vec3 kd = m.kind == material_kind::phong ? vec3(m.kd) : vec3(m.albedo.a);
-              const vec3 ks = m.kind == material_kind::phong ? vec3(m.ks) : vec3(0);
+              const vec3 kd = ph ? vec3(ph->kd) : vec3(m.get<material_kinds::lambertian>()->albedo.a);
+              const vec3 ks = ph ? vec3(ph->ks) : vec3(0);
               want = (kd / pi<double> + ks * spec) * nl * vec3(30, 20, 10) / glm::dot(to, to);
               ++lit;
             }

@@ -32,7 +32,7 @@ constexpr double deg = pi<double> / 180;
 
 // [listing local-shading]
 // Local model at a hit: ambient plus one point light, no shadow ray (book 1.9).
-rgb local_shade(const material& m, const hit& h, const vec3& view_dir, const vec3& light_pos, bool blinn) {
+rgb local_shade(const material_kinds::phong& m, const hit& h, const vec3& view_dir, const vec3& light_pos, bool blinn) {
   const vec3 n = h.facing_normal(), v = -view_dir, l = glm::normalize(light_pos - h.p);
   const auto k = blinn ? blinn_phong_terms(n, l, v, m.shininess) : phong_terms(n, l, v, m.shininess);
   const phong_material_t<double, vec3> coeffs{vec3(0.1) * vec3(m.kd), vec3(m.kd), vec3(m.ks), m.shininess};
@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
       ++c.rays;
       if (!nearest_hit(sc, r, sh)) return sc.background;
       const bool blinn = sh.object.index >= 5;  // the second row
-      return local_shade(sc.materials[sh.material], sh.h, r.direction, light_pos, blinn);
+      return local_shade(*sc.materials[sh.material].get<material_kinds::phong>(), sh.h, r.direction, light_pos, blinn);
     }, opt);
     write_image(img, out);
     std::printf("%s\nwrote %s: top row Phong, bottom row Blinn-Phong, shininess 1 8 32 128 512\n\n",

@@ -48,7 +48,7 @@ scene edge_scene(int width, int height) {
 rgb unlit(const scene& sc, const ray& r) {
   scene_hit sh;
   if (!nearest_hit(sc, r, sh)) return sc.background;
-  return evaluate(sc.materials[sh.material].albedo, sh.h.p, sh.h.facing_normal(), sh.h.uv);
+  return evaluate(sc.materials[sh.material].get<material_kinds::lambertian>()->albedo, sh.h.p, sh.h.facing_normal(), sh.h.uv);
 }
 // [end]
 

@@ -64,7 +64,7 @@ rgb direct(const scene& sc, const light_set& lights, const ray& r, strategy s, d
   if (!nearest_hit(sc, r, sh)) return sc.background;
   const material& m = sc.materials[std::size_t(sh.material)];
   const rgb Le = emitted(m, sh.h);
-  if (m.kind == material_kind::emitter) return Le;
+  if (m.is<material_kinds::emitter>()) return Le;
   const vec3 n = sh.h.facing_normal(), wo = -r.direction, x = sh.h.p;
 
   vec3 wi;

@@ -235,41 +235,6 @@ inline bool finite(const gpu_float4& v) {
 inline gpu_camera to_gpu(const camera_t<double>::prepared& c) { return detail::camera_to_gpu(c); }
 inline gpu_camera to_gpu(const camera_t<float>::prepared& c) { return detail::camera_to_gpu(c); }
 
-// The material's numbers; its texture records (albedo_texture, roughness_texture) are added by
-// pack_scene, which owns the texture table.
-inline gpu_material to_gpu(const material& m) {
-  gpu_material g{};
-  g.albedo_texture = g.roughness_texture = -1;
-  switch (m.kind) {
-    case material_kind::lambertian: g.kind = gpu_lambertian; break;
-    case material_kind::fuzzy_metal: g.kind = gpu_metal; break;
-    case material_kind::dielectric: g.kind = gpu_dielectric; break;
-    case material_kind::emitter: g.kind = gpu_emitter; break;
-    case material_kind::phong: g.kind = gpu_phong; break;
-    case material_kind::rough_conductor: g.kind = gpu_rough_conductor; break;
-    case material_kind::rough_dielectric: g.kind = gpu_rough_dielectric; break;
-  }
-  g.roughness = float(m.roughness);
-  g.schlick = m.conductor.schlick ? 1 : 0;  // Schlick's F0 travels in eta
-  g.eta = to_gpu(m.conductor.schlick ? m.conductor.f0 : m.conductor.eta);
-  g.k = to_gpu(m.conductor.k);
-  if (m.kind == material_kind::phong) {  // brdf_at(): Lambert kd/pi plus the normalised lobe ks
-    g.albedo_a = to_gpu(m.kd);
-    g.albedo_b = to_gpu(m.ks);
-    g.shininess = float(m.shininess);
-  } else {
-    g.albedo_a = to_gpu(m.albedo.a);
-    g.albedo_b = to_gpu(m.albedo.b);
-    g.checker = m.albedo.type != texture::kind::checker ? 0 : m.albedo.uv_space ? 2 : 1;
-  }
-  g.cell = float(m.albedo.cell);
-  g.radiance = to_gpu(m.radiance);
-  g.two_sided = m.two_sided ? 1 : 0;
-  g.fuzz = float(m.fuzz);
-  g.ior = float(m.ior);
-  return g;
-}
-
 // A texture record, its image's texels appended to g.texels (linear RGB: the scene file decoded
 // sRGB when it read the image, texture_file.hpp); returns its index in g.textures.
 inline std::int32_t pack_texture(gpu_scene& g, const texture& t) {
@@ -298,6 +263,53 @@ inline std::int32_t pack_texture(gpu_scene& g, const texture& t) {
   g.textures.push_back(o);
   return std::int32_t(g.textures.size() - 1);
 }
+
+// What a material kind's pack() (materials/) fills: the record the kernel reads, and a texture
+// record in the scene's table for a texture it names (none when one material is packed alone).
+struct gpu_material_packer {
+  gpu_material& record;
+  gpu_scene* scene = nullptr;
+  static gpu_float4 colour(const rgb& c) { return to_gpu(c); }
+  std::int32_t texture(const zraka::texture& t) { return scene ? pack_texture(*scene, t) : -1; }
+  // An albedo: a solid colour or a checker in the record itself, an image or noise as a record.
+  void albedo(const zraka::texture& t) {
+    record.albedo_a = to_gpu(t.a);
+    record.albedo_b = to_gpu(t.b);
+    record.checker = t.type != zraka::texture::kind::checker ? 0 : t.uv_space ? 2 : 1;
+    record.cell = float(t.cell);
+    if (t.type == zraka::texture::kind::image || t.type == zraka::texture::kind::noise) record.albedo_texture = texture(t);
+  }
+};
+// Does the kernel render kind K? (It has a pack() and a KIND_ in kernels/pathtrace.cl.)
+template <class K> constexpr bool gpu_renders = requires(const K& k, gpu_material_packer& p) { k.pack(p); };
+static_assert(material_kinds::lambertian::gpu_kind == gpu_lambertian && material_kinds::fuzzy_metal::gpu_kind == gpu_metal &&
+              material_kinds::dielectric::gpu_kind == gpu_dielectric && material_kinds::emitter::gpu_kind == gpu_emitter &&
+              material_kinds::phong::gpu_kind == gpu_phong && material_kinds::rough_conductor::gpu_kind == gpu_rough_conductor &&
+              material_kinds::rough_dielectric::gpu_kind == gpu_rough_dielectric, "the kinds' KIND_ numbers");
+
+// The record of a material, packed by its kind; its textures go into g's table (g null: -1).
+// What a kind does not set keeps a default material's values: the kernel reads a field only
+// for the kinds that have it.
+inline gpu_material pack_material(const material& m, gpu_scene* g) {
+  gpu_material r{};
+  r.albedo_texture = r.roughness_texture = -1;
+  gpu_material_packer p{r, nullptr};
+  p.albedo(material_kinds::lambertian{}.albedo);
+  material_kinds::rough_conductor{}.pack(p);
+  r.ior = float(material_kinds::dielectric{}.ior);
+  p.scene = g;
+  std::visit([&](const auto& k) {
+    if constexpr (gpu_renders<std::decay_t<decltype(k)>>) {
+      r.kind = k.gpu_kind;
+      k.pack(p);
+    }
+  }, m.kind);
+  r.radiance = to_gpu(m.radiance);
+  r.two_sided = m.two_sided ? 1 : 0;
+  return r;
+}
+// The material's numbers alone (no texture records).
+inline gpu_material to_gpu(const material& m) { return pack_material(m, nullptr); }
 
 // [listing gpu-environment]
 // The environment: a constant sky's colour, or the map's texels and its distribution_2d's
@@ -350,42 +362,36 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
     const material& m = sc.material_of(o);
     if (is_custom(m))
       throw error("realtime: " + sc.material_label(sc.material_index(o)) + " is a custom BSDF ('" +
-                  m.bsdf->name() + "'), which the OpenCL kernel cannot run; " + render_it_with(sc));
+                  m.get<material_kinds::custom>()->bsdf->name() + "'), which the OpenCL kernel cannot run; " + render_it_with(sc));
+    if (!std::visit([](const auto& k) { return gpu_renders<std::decay_t<decltype(k)>>; }, m.kind))
+      throw error("realtime: " + sc.material_label(sc.material_index(o)) + " is a " + kind_name(m.kind) +
+                  ", which the OpenCL kernel does not render; " + render_it_with(sc));
   });
   const path_tracer_t<T> tracer(sc, opt);  // the CPU's own checks, and its lights
   const light_set_t<T>& lights = tracer.lights;
   g.light_summary = lights.describe();
-  // The albedo is read by Lambert and metal (material.hpp), the roughness map by the microfacets.
-  auto textured_albedo = [](const material& m) {
-    return (m.kind == material_kind::lambertian || m.kind == material_kind::fuzzy_metal) &&
-           (m.albedo.type == texture::kind::image || m.albedo.type == texture::kind::noise);
-  };
-  auto roughness_map = [](const material& m) { return is_microfacet(m) && m.roughness_map; };
-  for (const material& m : sc.materials) {
-    gpu_material o = to_gpu(m);
-    if (textured_albedo(m)) o.albedo_texture = pack_texture(g, m.albedo);
-    if (roughness_map(m)) o.roughness_texture = pack_texture(g, *m.roughness_map);
-    g.materials.push_back(o);
-  }
-  auto note_texture = [&](const texture& t) {
+  for (const material& m : sc.materials) g.materials.push_back(pack_material(m, &g));
+  // What the kernel must compile for the materials the objects use: read off their records.
+  auto note_texture = [&](std::int32_t i) {
+    const std::int32_t k = g.textures[std::size_t(i)].kind;
     f.textures = true;
-    f.checker |= t.type == texture::kind::checker;
-    f.uv_checker |= t.type == texture::kind::checker && t.uv_space;
-    f.image_textures |= t.type == texture::kind::image;
-    f.noise_textures |= t.type == texture::kind::noise;
+    f.checker |= k == gpu_tex_checker || k == gpu_tex_checker_uv;
+    f.uv_checker |= k == gpu_tex_checker_uv;
+    f.image_textures |= k == gpu_tex_image;
+    f.noise_textures |= k == gpu_tex_noise;
   };
   auto note_material = [&](int mi) {
     const material& m = sc.materials[std::size_t(mi)];
-    f.metal |= m.kind == material_kind::fuzzy_metal;
-    f.dielectric |= m.kind == material_kind::dielectric;
-    f.phong |= m.kind == material_kind::phong;
-    f.rough_conductor |= m.kind == material_kind::rough_conductor;
-    f.rough_dielectric |= m.kind == material_kind::rough_dielectric;
-    f.checker |= m.albedo.type == texture::kind::checker &&
-                 (m.kind == material_kind::lambertian || m.kind == material_kind::fuzzy_metal);
-    f.uv_checker |= f.checker && m.albedo.type == texture::kind::checker && m.albedo.uv_space;
-    if (textured_albedo(m)) note_texture(m.albedo);
-    if (roughness_map(m)) note_texture(*m.roughness_map);
+    const gpu_material& r = g.materials[std::size_t(mi)];
+    f.metal |= r.kind == gpu_metal;
+    f.dielectric |= r.kind == gpu_dielectric;
+    f.phong |= r.kind == gpu_phong;
+    f.rough_conductor |= r.kind == gpu_rough_conductor;
+    f.rough_dielectric |= r.kind == gpu_rough_dielectric;
+    f.checker |= r.checker != 0;
+    f.uv_checker |= r.checker == 2;
+    if (r.albedo_texture >= 0) note_texture(r.albedo_texture);
+    if (r.roughness_texture >= 0) note_texture(r.roughness_texture);
     f.emitters |= emits(m);
   };
   auto light_of = [&](shape_kind k, std::size_t i) { return std::int32_t(lights.index_of({k, int(i)})); };

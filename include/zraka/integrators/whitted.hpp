@@ -31,6 +31,9 @@
 #include <zraka/geometry/spawn.hpp>
 
 #include <cstdint>
+#include <optional>
+#include <type_traits>
+#include <variant>
 
 namespace zraka {
 
@@ -42,10 +45,55 @@ struct whitted_options {
   local_model model = local_model::phong;
 };
 
-// The diffuse colour of a surface: the albedo (a texture) or phong's kd.
-template <class T> rgb diffuse_colour(const material& m, const hit_t<T>& h) {
-  return m.kind == material_kind::phong ? m.kd : evaluate(m.albedo, h.p, h.facing_normal(), h.uv);
+// The local model's kd, ks and exponent at a hit, for the kinds that have one (a kind's
+// local_model(): lambertian and phong); none for the others.
+template <class T> std::optional<local_model_terms> local_terms(const material& m, const hit_t<T>& h) {
+  return std::visit([&](const auto& k) -> std::optional<local_model_terms> {
+    if constexpr (requires { k.local_model(h); }) return k.local_model(h);
+    else return std::nullopt;
+  }, m.kind);
 }
+
+// A call to a callable that lives on the caller's stack (a lambda), without copying it.
+template <class R, class... A> class call_ref {
+ public:
+  template <class F> call_ref(F& f) : obj_(&f), call_([](void* o, A... a) -> R { return (*static_cast<F*>(o))(a...); }) {}
+  R operator()(A... a) const { return call_(obj_, a...); }
+
+ private:
+  void* obj_;
+  R (*call_)(void*, A...);
+};
+
+// [listing whitted-vertex]
+// What a material kind's whitted() (materials/) is given at a hit: the ray's direction, the hit,
+// its geometric and shading normals on the ray's side, and the tracer's three ways to shade:
+// the local model with shadow rays (local), a branch of the ray tree (trace), the light the
+// surface gives off (emitted). A kind without whitted() is refused by check_whitted_scene.
+template <class T> struct whitted_vertex {
+  using scalar = T;
+  vec3_t<T> d;         // the incoming ray's direction
+  const hit_t<T>& h;
+  vec3_t<T> ng, ns;    // facing geometric and shading normals
+  vec3_t<T> shading_normal;  // the shading normal as the hit has it (not turned to the ray)
+  rng& g;
+  call_ref<rgb, const vec3_t<T>&, rgb> trace;
+  call_ref<rgb, const local_model_terms&> local;
+  rgb light;  // emitted(m, h)
+
+  bool outside(const vec3_t<T>& w) const { return glm::dot(w, ng) > T(0); }  // above the surface
+  hit_t<T> shading_hit() const {  // the hit with the shading normal (smooth on meshes)
+    hit_t<T> hs = h;
+    hs.normal = shading_normal;
+    return hs;
+  }
+  rgb emitted() const { return light; }
+};
+// [end]
+
+// Does Whitted's tracer shade kind K?
+template <class K> constexpr bool whitted_shades =
+    requires(const K& k, whitted_vertex<double>& w) { k.whitted(w); };
 
 // [listing local-shade]
 // f cos(theta_i) for light arriving from wi: Lambert kd/pi plus the normalised specular lobe,
@@ -53,14 +101,14 @@ template <class T> rgb diffuse_colour(const material& m, const hit_t<T>& h) {
 template <class T>
 rgb local_brdf_cos(const material& m, const hit_t<T>& h, const vec3_t<T>& n, const vec3_t<T>& wo,
                    const vec3_t<T>& wi, local_model model) {
-  if (m.kind != material_kind::lambertian && m.kind != material_kind::phong) return rgb(0);
-  const T p = T(m.shininess);
+  const auto lm = local_terms(m, h);
+  if (!lm) return rgb(0);
+  const T p = T(lm->shininess);
   const shading_terms_t<T> k = model == local_model::phong ? phong_terms(n, wi, wo, p)
                                                            : blinn_phong_terms(n, wi, wo, p);
   if (!(glm::dot(n, wo) > T(0))) return rgb(0);  // seen from below the shading normal
   const T norm = model == local_model::phong ? (p + T(2)) / (T(2) * pi<T>) : (p + T(8)) / (T(8) * pi<T>);
-  const rgb ks = m.kind == material_kind::phong ? m.ks : rgb(0);
-  return diffuse_colour(m, h) * float(k.diffuse / pi<T>) + ks * float(norm * k.specular * k.diffuse);
+  return lm->kd * float(k.diffuse / pi<T>) + lm->ks * float(norm * k.specular * k.diffuse);
 }
 // [end]
 
@@ -108,47 +156,23 @@ rgb whitted_radiance(const scene_t<T>& sc, const light_set_t<T>& lights, const r
     if (depth >= opt.max_depth || !(bw >= opt.min_weight)) return rgb(0);
     return w * whitted_radiance(sc, lights, spawn_ray(h, dir), g, opt, rays, depth + 1, bw);
   };
+  // Lambert and Phong: the local model, and for Phong the mirror ray weighted by ks.
+  auto local = [&](const local_model_terms& lm) {
+    rgb c = emitted(m, h) + direct_light(sc, lights, sh, wo, g, opt, rays) + sc.ambient * lm.kd;
+    if (lm.ks != rgb(0)) {
+      const vec3_t<T> ng = h.facing_normal(), w = reflect(r.direction, sh.facing_shading_normal());
+      c += trace(glm::dot(w, ng) > T(0) ? w : reflect(r.direction, ng), lm.ks);
+    }
+    return c;
+  };
   // Directions bend around the shading normal (smooth on meshes); one that would cross the
   // geometric surface (possible where the two normals differ) falls back to the geometric one.
-  const vec3_t<T> ng = h.facing_normal(), ns = sh.facing_shading_normal();
-  auto outside = [&](const vec3_t<T>& w) { return glm::dot(w, ng) > T(0); };
-  switch (m.kind) {
-    case material_kind::emitter:
-      return emitted(m, h);
-    case material_kind::lambertian:
-    case material_kind::phong: {
-      rgb c = emitted(m, h) + direct_light(sc, lights, sh, wo, g, opt, rays) + sc.ambient * diffuse_colour(m, h);
-      if (m.kind == material_kind::phong && m.ks != rgb(0)) {
-        const vec3_t<T> w = reflect(r.direction, ns);
-        c += trace(outside(w) ? w : reflect(r.direction, ng), m.ks);
-      }
-      return c;
-    }
-    case material_kind::fuzzy_metal: {  // fuzz 0: the mirror direction exactly
-      hit_t<T> hs = h;
-      hs.normal = sh.shading_normal;
-      auto s = scatter(m, r.direction, hs, g);
-      if (s && !outside(s->direction)) s = scatter(m, r.direction, h, g);
-      return s ? trace(s->direction, s->weight) : rgb(0);
-    }
-    case material_kind::dielectric: {
-      const T eta = relative_ior(h.front_face, T(m.ior));
-      vec3_t<T> n = ns;
-      auto t = refract(r.direction, n, eta);  // none on total internal reflection
-      if (!outside(reflect(r.direction, n)) || (t && outside(*t))) {
-        n = ng;
-        t = refract(r.direction, n, eta);
-      }
-      const float R = t ? float(fresnel_dielectric(-glm::dot(r.direction, n), eta)) : 1.0f;
-      rgb c = trace(reflect(r.direction, n), rgb(R));
-      if (t) c += trace(*t, rgb(1.0f - R));
-      return c;
-    }
-    case material_kind::rough_conductor:  // refused by check_whitted_scene
-    case material_kind::rough_dielectric:
-      return rgb(0);
-  }
-  return rgb(0);
+  whitted_vertex<T> w{r.direction, h, h.facing_normal(), sh.facing_shading_normal(), sh.shading_normal, g, trace, local,
+                      emitted(m, h)};
+  return std::visit([&](const auto& k) {  // the kind's whitted() (materials/)
+    if constexpr (whitted_shades<std::decay_t<decltype(k)>>) return k.whitted(w);
+    else return rgb(0);  // refused by check_whitted_scene
+  }, m.kind);
 }
 // [end]
 
@@ -162,12 +186,16 @@ template <class T> void check_whitted_scene(const scene_t<T>& sc) {
     const material& m = sc.material_of(o);
     if (is_custom(m))
       throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a custom BSDF ('" +
-                  m.bsdf->name() + "'), which the Whitted ray tracer cannot shade; " + render_it_with(sc));
+                  m.get<material_kinds::custom>()->bsdf->name() + "'), which the Whitted ray tracer cannot shade; " + render_it_with(sc));
     // A glossy lobe is neither a mirror (one ray) nor a local model (a highlight per light):
     // it needs the integral over directions that path tracing estimates.
     if (is_microfacet(m))
       throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a " + kind_name(m.kind) +
                   ", a rough microfacet surface, which the Whitted ray tracer cannot shade; " + render_it_with(sc));
+    const bool shades = std::visit([](const auto& k) { return whitted_shades<std::decay_t<decltype(k)>>; }, m.kind);
+    if (!shades)  // a kind without whitted() (materials/)
+      throw error("whitted: " + sc.material_label(sc.material_index(o)) + " is a " + kind_name(m.kind) +
+                  ", which the Whitted ray tracer cannot shade; " + render_it_with(sc));
   });
 }
 

@@ -22,21 +22,13 @@
 #include <cstddef>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <variant>
+#include <vector>
 
 namespace zraka {
 
 namespace detail {
-// The converter's name of a material kind, or nullptr for one it does not know.
-inline const char* mitsuba_kind(material_kind k) {
-  if (k == material_kind::lambertian) return "lambertian";
-  if (k == material_kind::fuzzy_metal) return "metal";
-  if (k == material_kind::dielectric) return "dielectric";
-  if (k == material_kind::emitter) return "emitter";
-  if (k == material_kind::phong) return "phong";
-  if (k == material_kind::rough_conductor) return "rough_conductor";
-  if (k == material_kind::rough_dielectric) return "rough_dielectric";
-  return nullptr;
-}
 // A file name inside a JSON string: quotes, backslashes and control characters escaped.
 inline std::string json_escape(const std::string& s) {
   std::string r;
@@ -51,6 +43,46 @@ inline std::string json_escape(const std::string& s) {
   }
   return r;
 }
+// A material as JSON fields, from its kind's write() (materials/): what the converter reads
+// (albedo and checker, fuzz, ior, alpha, eta and k, an image texture) and the refusals of what
+// it cannot express. Fields are kept in order; a kind's value replaces a default.
+struct mitsuba_material_writer {
+  std::string label, kind;  // "--export: material 'red'", "metal"
+  std::vector<std::pair<std::string, std::string>> fields;
+  const zraka::texture* image = nullptr;  // written after the other fields, with its texels
+
+  static std::string num(double x) {
+    std::ostringstream o;
+    o.precision(17);
+    o << x;
+    return o.str();
+  }
+  static std::string v3(const rgb& c) { return "[" + num(c.x) + ", " + num(c.y) + ", " + num(c.z) + "]"; }
+  void set(const std::string& key, const std::string& json) {
+    for (auto& [k, v] : fields)
+      if (k == key) return void(v = json);
+    fields.emplace_back(key, json);
+  }
+  void number(const char* key, double x) { set(key == std::string("roughness") ? "alpha" : key, num(x)); }
+  void colour(const char* key, const rgb& c) {
+    if (key == std::string("f0"))
+      throw error(label + " is a rough_conductor given by an RGB f0 (Schlick's approximation), which Mitsuba's "
+                  "roughconductor does not have; give a metal preset or eta and k");
+    set(key, v3(c));
+  }
+  void texture(const char* key, const zraka::texture& t) {
+    if (key != std::string("albedo"))
+      throw error(label + " has a " + key + " texture (" + describe(t) + "), which Mitsuba cannot match exactly");
+    if (t.type == zraka::texture::kind::noise) throw error(label + " has " + describe(t) + ", which Mitsuba does not have");
+    if (t.type == zraka::texture::kind::image && kind != "lambertian")
+      throw error(label + " is a " + kind + " with " + describe(t) + "; only lambertian image textures are exported");
+    set("albedo", v3(t.a));
+    set("checker", t.type == zraka::texture::kind::checker ? "true" : "false");
+    if (t.type == zraka::texture::kind::image) image = &t;
+  }
+  void medium(const char*, int) {}  // the interior, written for every material
+};
+
 }  // namespace detail
 
 // Throws zraka::error for what the converter cannot express (see the top).
@@ -63,25 +95,34 @@ ZRAKA_COMPILED_FN std::string mitsuba_scene_json(const scene& sc, int width, int
     throw error("--export: a user shape ('" + sc.user_shapes[0].shape->name() + "') cannot be exported");
   for (const medium& md : sc.media)
     if (!md.homogeneous()) throw error("--export: medium '" + md.name + "' is a density grid; only homogeneous media are exported");
+  // Every material's fields first: what cannot be exported is refused before anything is written.
+  std::vector<detail::mitsuba_material_writer> mats;
   for (std::size_t i = 0; i < sc.materials.size(); ++i) {
     const material& m = sc.materials[i];
-    const std::string label = "--export: " + sc.material_label(int(i));
-    if (is_custom(m)) throw error(label + " is a custom BSDF ('" + m.bsdf->name() + "'), which cannot be exported");
-    if (!detail::mitsuba_kind(m.kind)) throw error(label + " is of a kind the converter does not know");
-    if (is_microfacet(m) && m.roughness_map)
-      throw error(label + " has a roughness texture (" + describe(*m.roughness_map) + "), which Mitsuba cannot match exactly");
-    if (m.kind == material_kind::rough_conductor && m.conductor.schlick)
-      throw error(label + " is a rough_conductor given by an RGB f0 (Schlick's approximation), which Mitsuba's "
-                  "roughconductor does not have; give a metal preset or eta and k");
-    if (m.albedo.type == texture::kind::noise) throw error(label + " has " + describe(m.albedo) + ", which Mitsuba does not have");
-    if (m.albedo.type == texture::kind::image && m.kind != material_kind::lambertian)
-      throw error(label + " is a " + kind_name(m.kind) + " with " + describe(m.albedo) + "; only lambertian image textures are exported");
+    detail::mitsuba_material_writer w{"--export: " + sc.material_label(int(i)), kind_name(m.kind), {}, nullptr};
+    if (const auto* c = m.get<material_kinds::custom>())
+      throw error(w.label + " is a custom BSDF ('" + c->bsdf->name() + "'), which cannot be exported");
+    w.set("type", "\"" + w.kind + "\"");
+    w.texture("albedo", material_kinds::lambertian{}.albedo);  // the kinds without one: a default's
+    w.number("fuzz", 0);
+    w.number("ior", material_kinds::dielectric{}.ior);
+    if (m.is<material_kinds::emitter>()) w.texture("albedo", texture::solid(rgb(0)));  // black
+    const bool known = std::visit([&](const auto& k) {
+      if constexpr (requires { k.write(w, m); }) return k.write(w, m), true;
+      else return false;
+    }, m.kind);
+    if (!known) throw error(w.label + " is of a kind the converter does not know");
+    w.set("radiance", w.v3(m.radiance));
+    w.set("two_sided", m.two_sided ? "true" : "false");
+    w.set("interior", std::to_string(m.interior));
+    mats.push_back(std::move(w));
   }
+  auto albedo_image = [&](int mat) { return mats[std::size_t(mat)].image; };
   // An image texture is looked up by the hit's (u, v): a quad's is Mitsuba's rectangle's, a
   // sphere's and a triangle's (barycentric) are not.
   auto image_on = [&](int mat, const char* shape) {
-    if (sc.materials[std::size_t(mat)].albedo.type == texture::kind::image)
-      throw error("--export: " + sc.material_label(mat) + " has " + describe(sc.materials[std::size_t(mat)].albedo) +
+    if (const texture* t = albedo_image(mat))
+      throw error("--export: " + sc.material_label(mat) + " has " + describe(*t) +
                   " on a " + shape + ", whose (u, v) differ from Mitsuba's; image textures are exported on quads only");
   };
   for (const auto& s : sc.spheres) image_on(s.material, "sphere");
@@ -121,27 +162,14 @@ ZRAKA_COMPILED_FN std::string mitsuba_scene_json(const scene& sc, int width, int
   o << ", \"up\": ";
   v3(sc.camera.up);
   o << ", \"vfov\": " << sc.camera.vfov_degrees << "},\n  \"materials\": [";
-  for (std::size_t i = 0; i < sc.materials.size(); ++i) {
-    const material& m = sc.materials[i];
-    o << (i ? ",\n    " : "\n    ") << "{\"type\": \"" << detail::mitsuba_kind(m.kind) << "\", \"albedo\": ";
-    v3(m.albedo.a);
-    o << ", \"checker\": " << (m.albedo.type == texture::kind::checker ? "true" : "false")
-      << ", \"fuzz\": " << m.fuzz << ", \"ior\": " << m.ior << ", \"radiance\": ";
-    v3(m.radiance);
-    o << ", \"two_sided\": " << (m.two_sided ? "true" : "false") << ", \"interior\": " << m.interior;
-    if (is_microfacet(m)) {  // book 5.4
-      o << ", \"alpha\": " << m.roughness;
-      if (m.kind == material_kind::rough_conductor) {
-        o << ", \"eta\": ";
-        v3(m.conductor.eta);
-        o << ", \"k\": ";
-        v3(m.conductor.k);
-      }
-    }
-    if (m.albedo.type == texture::kind::image) {
-      o << ", \"texture\": {\"source\": \"" << detail::json_escape(m.albedo.source) << "\", \"repeat\": " << (m.albedo.repeat ? "true" : "false")
+  for (std::size_t i = 0; i < mats.size(); ++i) {
+    o << (i ? ",\n    " : "\n    ") << "{";
+    for (std::size_t f = 0; f < mats[i].fields.size(); ++f)
+      o << (f ? ", " : "") << "\"" << mats[i].fields[f].first << "\": " << mats[i].fields[f].second;
+    if (const texture* t = mats[i].image) {
+      o << ", \"texture\": {\"source\": \"" << detail::json_escape(t->source) << "\", \"repeat\": " << (t->repeat ? "true" : "false")
         << ", ";
-      texels(*m.albedo.map);
+      texels(*t->map);
       o << "}";
     }
     o << "}";

@@ -39,6 +39,7 @@
 #define ZRAKA_SCENE_MESH_FILES 0
 #endif
 #include <zraka/scene/scene.hpp>
+#include <zraka/materials/builtin.hpp>
 #include <zraka/scene/scene_registry.hpp>
 #include <zraka/geometry/tessellate.hpp>
 
@@ -78,7 +79,7 @@ namespace zraka {
 // Defaults that belong to no struct.
 struct scene_file_defaults {
   static constexpr double sphere_radius = 1.0;
-  static constexpr float area_light_radiance = 4.0f;
+  static constexpr float area_light_radiance = material_kinds::emitter::default_radiance;
   static constexpr int bezier_divs = 8;
   static constexpr int max_spp = 65536;
   static constexpr int max_depth = 64;
@@ -119,9 +120,15 @@ class scene_node {
   rgb colour(const std::string& key) const;
   rgb colour(const std::string& key, const rgb& fallback) const;
   std::string text(const std::string& key, const std::string& fallback) const;
+  int medium(const std::string& key) const;  // a name in the media section; its index
+  bool is_map(const std::string& key) const;
+  std::string scalar(const std::string& key) const;  // the field as written, for messages
   // An error at the field (or at the entry, if the field is absent): "must be positive".
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+  [[noreturn]] void fail(const std::string& what) const;  // at the entry
   std::string field(const std::string& key) const { return path_ + "." + key; }
+  // A colour or a texture, as a material's albedo: {checker: ...}, {image: ...}, {noise: ...}.
+  zraka::texture texture(const std::string& key) const;
   // [end]
 
  private:
@@ -589,6 +596,16 @@ class scene_reader {
     return n;
   }
 
+  // What a material kind's write() (materials/) fills the resolved scene's entry with.
+  struct resolved_writer {
+    const scene_reader& r;
+    YAML::Node& node;
+    void number(const char* key, double x) { node[key] = num(x); }
+    void colour(const char* key, const rgb& c) { node[key] = flow(c); }
+    void texture(const char* key, const zraka::texture& t) { node[key] = albedo_node(t); }
+    void medium(const char* key, int index) { node[key] = r.out_.sc.media[std::size_t(index)].name; }
+  };
+
   void materials(const YAML::Node& n) {
     out_.sc.add_material(material{});  // "default"
     out_.sc.material_names.push_back("default");
@@ -614,47 +631,13 @@ class scene_reader {
         resolved_["materials"][out_.sc.material_names[i]] = it->second;
         continue;
       }
-      switch (m.kind) {
-        case material_kind::lambertian:
-          r["type"] = "lambertian";
-          r["albedo"] = albedo_node(m.albedo);
-          break;
-        case material_kind::fuzzy_metal:
-          r["type"] = "metal";
-          r["albedo"] = albedo_node(m.albedo);
-          r["fuzz"] = num(m.fuzz);
-          break;
-        case material_kind::dielectric:
-          r["type"] = "dielectric";
-          r["ior"] = num(m.ior);
-          if (m.interior >= 0) r["medium"] = out_.sc.media[std::size_t(m.interior)].name;
-          break;
-        case material_kind::emitter:
-          r["type"] = "emitter";
-          r["radiance"] = flow(m.radiance);
-          break;
-        case material_kind::phong:
-          r["type"] = "phong";
-          r["kd"] = flow(m.kd);
-          r["ks"] = flow(m.ks);
-          r["shininess"] = num(m.shininess);
-          break;
-        case material_kind::rough_conductor:
-          r["type"] = "rough_conductor";
-          r["roughness"] = m.roughness_map ? albedo_node(*m.roughness_map) : num(m.roughness);
-          if (m.conductor.schlick) {
-            r["f0"] = flow(m.conductor.f0);
-          } else {  // a preset resolves to its numbers
-            r["eta"] = flow(m.conductor.eta);
-            r["k"] = flow(m.conductor.k);
-          }
-          break;
-        case material_kind::rough_dielectric:
-          r["type"] = "rough_dielectric";
-          r["roughness"] = m.roughness_map ? albedo_node(*m.roughness_map) : num(m.roughness);
-          r["ior"] = num(m.ior);
-          break;
-      }
+      r["type"] = kind_name(m.kind);
+      std::visit([&](const auto& k) {
+        if constexpr (requires { k.write(std::declval<resolved_writer&>(), m); }) {
+          resolved_writer w{*this, r};
+          k.write(w, m);
+        }
+      }, m.kind);
       r.SetStyle(YAML::EmitterStyle::Flow);
       resolved_["materials"][out_.sc.material_names[i]] = r;
     }
@@ -671,104 +654,9 @@ class scene_reader {
   material one_material(const YAML::Node& n, const std::string& path, int index) {
     if (!n.IsMap()) fail(n, path, "expected {type: ..., ...}, got " + scalar_text(n));
     const std::string type = n["type"] ? text(n["type"], path + ".type") : "lambertian";
-    if (const auto* reg = registry_.material_type(type)) return registered_material(n, path, type, *reg, index);
-    material m;
-    if (type == "lambertian") {
-      keys(n, path, {"type", "albedo"});
-      if (n["albedo"]) m.albedo = albedo(n["albedo"], path + ".albedo");
-    } else if (type == "metal") {
-      keys(n, path, {"type", "albedo", "fuzz"});
-      m.kind = material_kind::fuzzy_metal;
-      if (n["albedo"]) m.albedo = albedo(n["albedo"], path + ".albedo");
-      if (n["fuzz"]) {
-        m.fuzz = number(n["fuzz"], path + ".fuzz");
-        if (m.fuzz < 0 || m.fuzz > 1) fail(n["fuzz"], path + ".fuzz", "must be in [0, 1], got " + n["fuzz"].Scalar());
-      }
-    } else if (type == "dielectric") {
-      keys(n, path, {"type", "ior", "medium"});
-      m.kind = material_kind::dielectric;
-      if (n["ior"]) {
-        m.ior = number(n["ior"], path + ".ior");
-        if (!(m.ior > 0)) fail(n["ior"], path + ".ior", "must be positive, got " + n["ior"].Scalar());
-      }
-      if (n["medium"]) m.interior = medium_named(n["medium"], path + ".medium");
-    } else if (type == "boundary") {  // book 6.1: a medium's shape, no refraction (a dielectric of ior 1)
-      keys(n, path, {"type", "medium"});
-      m = material::boundary(medium_named(required(n, "medium", path), path + ".medium"));
-    } else if (type == "emitter") {
-      keys(n, path, {"type", "radiance"});
-      m = material::emitter(rgb(scene_file_defaults::area_light_radiance));
-      if (n["radiance"]) m.radiance = colour(n["radiance"], path + ".radiance");
-    } else if (type == "phong") {
-      keys(n, path, {"type", "kd", "ks", "shininess"});
-      m.kind = material_kind::phong;
-      if (n["kd"]) m.kd = colour(n["kd"], path + ".kd");
-      if (n["ks"]) m.ks = colour(n["ks"], path + ".ks");
-      if (n["shininess"]) {
-        m.shininess = number(n["shininess"], path + ".shininess");
-        if (!(m.shininess > 0)) fail(n["shininess"], path + ".shininess", "must be positive");
-      }
-    } else if (type == "rough_conductor") {
-      // [listing scene-rough-conductor]
-      // At most one of: metal (a preset of microfacet.hpp), eta and k (the complex index per
-      // channel), or f0 (the colour at normal incidence, Schlick); none: silver.
-      keys(n, path, {"type", "roughness", "metal", "eta", "k", "f0"});
-      m.kind = material_kind::rough_conductor;
-      roughness(n, path, m);
-      const int given = (n["metal"] ? 1 : 0) + (n["eta"] || n["k"] ? 1 : 0) + (n["f0"] ? 1 : 0);
-      if (given > 1) fail(n, path, "a rough_conductor takes one of: metal, eta and k, f0");
-      if (!given) {
-        m.conductor = *find_metal("silver");
-      } else if (n["metal"]) {
-        const std::string name = text(n["metal"], path + ".metal");
-        const auto f = find_metal(name);
-        if (!f) fail(n["metal"], path + ".metal", "unknown metal '" + name + "' (expected " + metal_names() + ")");
-        m.conductor = *f;
-      } else if (n["f0"]) {
-        const rgb f0 = colour(n["f0"], path + ".f0");
-        if (max_component(f0) > 1) fail(n["f0"], path + ".f0", "a reflectance must be at most 1");
-        m.conductor = conductor_fresnel::from_f0(f0);
-      } else {
-        const rgb eta = colour(required(n, "eta", path), path + ".eta");
-        const rgb k = colour(required(n, "k", path), path + ".k");
-        if (!(eta.x > 0 && eta.y > 0 && eta.z > 0)) fail(n["eta"], path + ".eta", "must be positive");
-        m.conductor = conductor_fresnel::complex_ior(eta, k);
-      }
-      // [end]
-    } else if (type == "rough_dielectric") {
-      keys(n, path, {"type", "roughness", "ior"});
-      m.kind = material_kind::rough_dielectric;
-      roughness(n, path, m);
-      if (n["ior"]) {
-        m.ior = number(n["ior"], path + ".ior");
-        if (!(m.ior > 0) || m.ior == 1)
-          fail(n["ior"], path + ".ior", "must be positive and not 1 (no interface to be rough), got " + n["ior"].Scalar());
-      }
-    } else {
-      fail(n["type"], path + ".type", "unknown material type '" + type + "' (expected " + registry_.material_types() + ")");
-    }
-    return m;
-  }
-
-  // The GGX alpha of a rough material (microfacet.hpp: as Mitsuba's alpha, not squared): a
-  // number, or a texture as for albedo whose channels' mean is alpha (material.hpp, alpha_at).
-  void roughness(const YAML::Node& n, const std::string& path, material& m) const {
-    if (!n["roughness"]) return;
-    const YAML::Node r = n["roughness"];
-    const std::string field = path + ".roughness";
-    if (r.IsMap()) {
-      const texture t = albedo(r, field);
-      // An image's texels are in [0, 1] already; checker and noise colours must be alphas too.
-      if (t.type != texture::kind::image)
-        for (const rgb& c : {t.a, t.b})
-          if (!(c.x > 0 && c.y > 0 && c.z > 0) || max_component(c) > 1)
-            fail(r, field, "the texture's values are GGX alphas and must be in (0, 1]");
-      m.roughness_map = t;
-      return;
-    }
-    m.roughness = number(r, field);
-    if (!(m.roughness > 0 && m.roughness <= 1))
-      fail(r, field, "must be in (0, 1] (the GGX alpha), got " + r.Scalar());
+    const auto* reg = registry_.material_type(type);  // the built-in ones too (materials/builtin.hpp)
+    if (!reg) fail(n["type"], path + ".type", "unknown material type '" + type + "' (expected " + registry_.material_types() + ")");
+    return registered_material(n, path, type, *reg, index);
   }
 
   void lights(const YAML::Node& n) {
@@ -1062,16 +950,19 @@ class scene_reader {
   // [end]
   material registered_material(const YAML::Node& n, const std::string& path, const std::string& type,
                                const scene_registry::entry<scene_registry::material_factory>& reg, int index) {
-    strict_keys(n, path, type, {"type"}, reg.keys);
+    strict_keys(n, path, reg.builtin ? "" : type, {"type"}, reg.keys);
     YAML::Node r;
     r["type"] = type;
     material m;
     located(n, path, [&] { m = reg.make(scene_node(*this, n, path, type, reg.keys, r)); });
     r.SetStyle(YAML::EmitterStyle::Flow);
-    registered_resolved_[index] = r;
+    // A built-in kind writes its own entry (materials(): every default filled in, a preset as
+    // its numbers); a course's type is written as its reader read it.
+    if (!reg.builtin) registered_resolved_[index] = r;
     return m;
   }
-  // Every key of n is one of `common` or `own`, once.
+  // Every key of n is one of `common` or `own`, once. type: named in the message ("unknown key
+  // for a disk"), or "" for a built-in material, whose message is that of every other section.
   void strict_keys(const YAML::Node& n, const std::string& path, const std::string& type,
                    std::initializer_list<const char*> common, const std::vector<std::string>& own) const {
     std::string list;
@@ -1083,7 +974,7 @@ class scene_reader {
       if (!seen.insert(k).second) fail(kv.first, join(path, k), "duplicate key");
       bool ok = std::find(own.begin(), own.end(), k) != own.end();
       for (const char* c : common) ok = ok || k == c;
-      if (!ok) fail(kv.first, join(path, k), "unknown key for a " + type + " (expected one of: " + list + ")");
+      if (!ok) fail(kv.first, join(path, k), "unknown key" + (type.empty() ? "" : " for a " + type) + " (expected one of: " + list + ")");
     }
   }
   // Runs f; a zraka::error without this file's place (thrown by user code) gets the entry's.
@@ -1178,6 +1069,30 @@ ZRAKA_SCENE_FILE_FN std::string scene_node::text(const std::string& key, const s
   const std::string s = has(key) ? r_.text(get(key), field(key)) : fallback;
   resolved_[key] = s;
   return s;
+}
+ZRAKA_SCENE_FILE_FN int scene_node::medium(const std::string& key) const {
+  const int i = r_.medium_named(need(key), field(key));
+  resolved_[key] = r_.out_.sc.media[std::size_t(i)].name;
+  return i;
+}
+ZRAKA_SCENE_FILE_FN bool scene_node::is_map(const std::string& key) const { return get(key).IsMap(); }
+ZRAKA_SCENE_FILE_FN std::string scene_node::scalar(const std::string& key) const {
+  const YAML::Node v = get(key);
+  return v.IsScalar() ? v.Scalar() : detail::scene_reader::scalar_text(v);
+}
+ZRAKA_SCENE_FILE_FN void scene_node::fail(const std::string& what) const { r_.fail(n_, path_, what); }
+ZRAKA_SCENE_FILE_FN texture scene_node::texture(const std::string& key) const {
+  const zraka::texture t = r_.albedo(need(key), field(key));
+  resolved_[key] = detail::scene_reader::albedo_node(t);
+  return t;
+}
+
+// ---------------------------------------------------------------- scene_registry
+// Here, not in scene_registry.hpp: the built-in readers (materials/builtin.hpp) read a scene_node.
+ZRAKA_SCENE_FILE_FN scene_registry::scene_registry() {
+  register_builtin_materials(*this);
+  builtin_materials_ = material_order_;
+  for (auto& kv : materials_) kv.second.builtin = true;
 }
 #endif  // ZRAKA_SCENE_FILE_DEFINITIONS
 

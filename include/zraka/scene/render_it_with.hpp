@@ -23,7 +23,7 @@ template <class T> std::string render_it_with(const scene_t<T>& sc) {
   };
   for (const auto& u : sc.user_shapes) note(u.shape->name());
   for (const material& m : sc.materials)  // every material: an unused one also stops the loader
-    if (is_custom(m)) note(m.bsdf->name());
+    if (is_custom(m)) note(m.get<material_kinds::custom>()->bsdf->name());
   if (own.empty()) return "render it with pathtrace";
   std::string list;
   for (std::size_t i = 0; i < own.size(); ++i)

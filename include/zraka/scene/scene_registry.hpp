@@ -17,6 +17,8 @@
 // through a scene_node (scene_file.hpp), whose readers are those of the built-in types and whose
 // errors say "FILE:LINE:COLUMN: objects[2].radius: ...". A name that is already built in, or
 // registered twice, is refused when it is registered.
+// The built-in materials come through the same door: a registry starts with them, each
+// registered by add_material in materials/builtin.hpp, one line per kind.
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/materials/material.hpp>
@@ -38,11 +40,6 @@ inline const std::vector<std::string>& builtin_object_types() {
   static const std::vector<std::string> v = {"sphere", "plane", "triangle", "quad", "box", "mesh", "bezier"};
   return v;
 }
-inline const std::vector<std::string>& builtin_material_types() {
-  static const std::vector<std::string> v = {"lambertian", "metal", "dielectric", "emitter", "phong",
-                                              "rough_conductor", "rough_dielectric", "boundary"};
-  return v;
-}
 
 class scene_registry {
  public:
@@ -51,7 +48,12 @@ class scene_registry {
   template <class F> struct entry {
     std::vector<std::string> keys;  // allowed besides the common ones
     F make;
+    bool builtin = false;  // registered by the registry itself (materials/builtin.hpp)
   };
+
+  // The built-in material types (materials/builtin.hpp), registered with add_material. Defined
+  // in scene_file.hpp, where their readers' scene_node is.
+  scene_registry();
 
   // A shape: the factory returns the shape; the object's material is the entry's `material`.
   ZRAKA_COMPILED_FN void add_shape(const std::string& type, std::vector<std::string> keys, shape_factory make);
@@ -61,7 +63,9 @@ class scene_registry {
 
   ZRAKA_COMPILED_FN const entry<shape_factory>* shape(const std::string& type) const;
   ZRAKA_COMPILED_FN const entry<material_factory>* material_type(const std::string& type) const;
-  bool empty() const { return shapes_.empty() && materials_.empty(); }
+  // The built-in material types, in the order of builtin.hpp: "lambertian", "metal", ...
+  const std::vector<std::string>& builtin_materials() const { return builtin_materials_; }
+  bool empty() const { return shapes_.empty() && materials_.size() == builtin_materials_.size(); }
 
   // "sphere, plane, ... or bezier; registered: disk" for an unknown-type message.
   ZRAKA_COMPILED_FN std::string object_types() const;
@@ -69,7 +73,9 @@ class scene_registry {
 
  private:
   std::map<std::string, entry<shape_factory>> shapes_;
-  std::map<std::string, entry<material_factory>> materials_;
+  std::map<std::string, entry<material_factory>> materials_;  // the built-in ones too
+  std::vector<std::string> builtin_materials_;  // in the order of builtin.hpp, for messages
+  std::vector<std::string> material_order_;     // every material type, in the order registered
 
   template <class M> static const typename M::mapped_type* find(const M& m, const std::string& type);
   template <class M>
@@ -90,9 +96,10 @@ ZRAKA_COMPILED_FN void scene_registry::add_shape(const std::string& type, std::v
 }
 ZRAKA_COMPILED_FN void scene_registry::add_material(const std::string& type, std::vector<std::string> keys,
                                                     material_factory make) {
-  check_name(type, builtin_material_types(), materials_, "material", {"type"}, keys);
+  check_name(type, builtin_materials_, materials_, "material", {"type"}, keys);
   if (!make) throw error("scene registry: the factory for material type '" + type + "' is empty");
   materials_[type] = {std::move(keys), std::move(make)};
+  material_order_.push_back(type);
 }
 ZRAKA_COMPILED_FN const scene_registry::entry<scene_registry::shape_factory>* scene_registry::shape(
     const std::string& type) const {
@@ -104,7 +111,7 @@ ZRAKA_COMPILED_FN const scene_registry::entry<scene_registry::material_factory>*
 }
 ZRAKA_COMPILED_FN std::string scene_registry::object_types() const { return listing(builtin_object_types(), shapes_); }
 ZRAKA_COMPILED_FN std::string scene_registry::material_types() const {
-  return listing(builtin_material_types(), materials_);
+  return listing(builtin_materials_, materials_);
 }
 
 template <class M> const typename M::mapped_type* scene_registry::find(const M& m, const std::string& type) {
@@ -135,13 +142,11 @@ template <class M> std::string scene_registry::listing(const std::vector<std::st
   std::string s;
   for (std::size_t i = 0; i < builtin.size(); ++i)
     s += (i == 0 ? "" : i + 1 == builtin.size() ? " or " : ", ") + builtin[i];
-  if (!registered.empty()) {
-    s += "; registered: ";
-    bool first = true;
-    for (const auto& kv : registered) {
-      s += (first ? "" : ", ") + kv.first;
-      first = false;
-    }
+  bool first = true;
+  for (const auto& kv : registered) {
+    if (kv.second.builtin) continue;
+    s += (first ? "; registered: " : ", ") + kv.first;
+    first = false;
   }
   return s;
 }
