@@ -103,7 +103,10 @@ ZRAKA_PATHTRACE_MAIN_FN int pathtrace_main_in(int argc, char** argv, const scene
     opt.apply_to(sc.settings);
     const int W = opt.width, H = opt.height;
     for (std::string* f : {&pfm, &report, &json})
-      if (!f->empty()) *f = output_file_under(*f, root).string();
+      if (!f->empty()) {  // checked before the render, so a failed run leaves no image behind
+        *f = output_file_under(*f, root).string();
+        check_output_name(*f);
+      }
     path_options io;
     io.method = parse_integrator(method);
     io.max_depth = opt.depth;

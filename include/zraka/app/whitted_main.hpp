@@ -65,7 +65,10 @@ ZRAKA_WHITTED_MAIN_FN int whitted_main_in(int argc, char** argv, const scene_reg
 
   return guarded([&] {
     stopwatch total;
-    if (!pfm.empty()) pfm = output_file_under(pfm, root).string();
+    if (!pfm.empty()) {  // checked before the render, so a failed run leaves no image behind
+      pfm = output_file_under(pfm, root).string();
+      check_output_name(pfm);
+    }
     loaded_scene ls = load_scene_argument_in(po.scene, root, registry);  // the course's kinds too
     scene& sc = ls.sc;
     po.apply_to(sc.settings);
