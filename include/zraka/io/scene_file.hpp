@@ -39,6 +39,7 @@
 #define ZRAKA_SCENE_MESH_FILES 0
 #endif
 #include <zraka/scene/scene.hpp>
+#include <zraka/lights/builtin.hpp>
 #include <zraka/scene/scene_registry.hpp>
 #include <zraka/geometry/tessellate.hpp>
 
@@ -781,15 +782,7 @@ class scene_reader {
       const std::string type = text(required(l, "type", path), path + ".type");
       YAML::Node r;
       r["type"] = type;
-      if (type == "point") {
-        keys(l, path, {"type", "position", "intensity"});
-        point_light_t<double> p;
-        p.position = vector3(required(l, "position", path), path + ".position");
-        if (l["intensity"]) p.intensity = colour(l["intensity"], path + ".intensity");
-        out_.sc.add(p);
-        r["position"] = flow(p.position);
-        r["intensity"] = flow(p.intensity);
-      } else if (type == "quad" || type == "sphere") {
+      if (type == "quad" || type == "sphere") {  // shapes that glow, made here
         material m = material::emitter(rgb(scene_file_defaults::area_light_radiance));
         if (type == "quad") {
           keys(l, path, {"type", "corner", "u", "v", "radiance"});
@@ -813,8 +806,13 @@ class scene_reader {
           r["radius"] = num(rad);
         }
         r["radiance"] = flow(m.radiance);
+      } else if (const auto* reg = registry_.light_entry(type)) {  // lights/builtin.hpp's and a course's
+        strict_keys(l, path, reg->builtin ? "" : type, {"type"}, reg->keys);
+        light made;
+        located(l, path, [&] { made = reg->make(scene_node(*this, l, path, type, reg->keys, r)); });
+        out_.sc.add(std::move(made));
       } else {
-        fail(l["type"], path + ".type", "unknown light type '" + type + "' (expected point, quad or sphere)");
+        fail(l["type"], path + ".type", "unknown light type '" + type + "' (expected " + registry_.light_types() + ")");
       }
       r.SetStyle(YAML::EmitterStyle::Flow);
       resolved_["lights"].push_back(r);
@@ -1069,7 +1067,8 @@ class scene_reader {
     registered_resolved_[index] = r;
     return m;
   }
-  // Every key of n is one of `common` or `own`, once.
+  // Every key of n is one of `common` or `own`, once. type: named in the message ("unknown key
+  // for a disk"), or "" for a built-in kind, whose message is that of every other section.
   void strict_keys(const YAML::Node& n, const std::string& path, const std::string& type,
                    std::initializer_list<const char*> common, const std::vector<std::string>& own) const {
     std::string list;
@@ -1081,7 +1080,7 @@ class scene_reader {
       if (!seen.insert(k).second) fail(kv.first, join(path, k), "duplicate key");
       bool ok = std::find(own.begin(), own.end(), k) != own.end();
       for (const char* c : common) ok = ok || k == c;
-      if (!ok) fail(kv.first, join(path, k), "unknown key for a " + type + " (expected one of: " + list + ")");
+      if (!ok) fail(kv.first, join(path, k), "unknown key" + (type.empty() ? "" : " for a " + type) + " (expected one of: " + list + ")");
     }
   }
   // Runs f; a zraka::error without this file's place (thrown by user code) gets the entry's.
@@ -1176,6 +1175,15 @@ ZRAKA_SCENE_FILE_FN std::string scene_node::text(const std::string& key, const s
   const std::string s = has(key) ? r_.text(get(key), field(key)) : fallback;
   resolved_[key] = s;
   return s;
+}
+
+// ---------------------------------------------------------------- scene_registry
+// Here, not in scene_registry.hpp: the built-in readers (lights/builtin.hpp) read a scene_node.
+ZRAKA_SCENE_FILE_FN scene_registry::scene_registry() {
+  register_builtin_lights(*this);
+  for (auto& kv : lights_) kv.second.builtin = true;
+  builtin_lights_ = light_order_;
+  builtin_lights_.insert(builtin_lights_.end(), {"quad", "sphere"});  // the lights section's glowing shapes
 }
 #endif  // ZRAKA_SCENE_FILE_DEFINITIONS
 
