@@ -81,9 +81,10 @@ template <class U, class T> scene_t<U> scene_in(const scene_t<T>& s) {
                 " (user_shape.hpp) and cannot be converted; render this scene in " + detail::precision_name<T>());
   // The light kinds keep double parameters (lights/light.hpp); a point light's position must
   // still fit in U, where it is sampled.
-  for (std::size_t i = 0; i < s.lights.size(); ++i)
-    if (const auto* p = s.lights[i].get<light_kinds::point>())
-      coordinates_in<U>(p->position, "point light " + std::to_string(i));
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const light& l = s.lights[i];
+    if (const auto* p = l.get<light_kinds::point>()) coordinates_in<U>(p->position, "point light " + std::to_string(i));
+  }
   f.lights = s.lights;
   f.background = s.background;
   f.environment = s.environment;
