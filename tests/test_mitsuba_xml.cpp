@@ -89,8 +89,9 @@ TEST_CASE("Mitsuba XML: the scenes of scenes/mitsuba load, and their YAML loads 
   const loaded_scene m = load_scene_argument("scenes/mitsuba/materials.xml");
   REQUIRE(m.sc.environment);
   CHECK(m.sc.environment->rotate_degrees() == doctest::Approx(40));  // rotate y 40
-  REQUIRE(m.sc.point_lights.size() == 1);
-  CHECK(m.sc.point_lights[0].position == vec3(-2, 4, 3));
+  REQUIRE(m.sc.lights.size() == 1);
+  REQUIRE(m.sc.lights[0].is<light_kinds::point>());
+  CHECK(m.sc.lights[0].get<light_kinds::point>()->position == vec3(-2, 4, 3));
   // bk7 in air, Mitsuba's defaults; water inside air for the rough glass.
   int glass = 0;
   for (const material& mat : m.sc.materials) {

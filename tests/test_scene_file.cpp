@@ -125,9 +125,11 @@ objects:
   CHECK(sc.materials[5].get<material_kinds::phong>()->shininess == 12);
   CHECK(sc.materials[6].radiance == rgb(8));
   CHECK(sc.materials[7].radiance == rgb(9));
-  REQUIRE(sc.point_lights.size() == 1);
-  CHECK(sc.point_lights[0].position == vec3(0, 9, 0));
-  CHECK(sc.point_lights[0].intensity == rgb(1, 2, 3));
+  REQUIRE(sc.lights.size() == 1);
+  const auto* point = sc.lights[0].get<light_kinds::point>();  // lights/point.hpp
+  REQUIRE(point);
+  CHECK(point->position == vec3(0, 9, 0));
+  CHECK(point->intensity == rgb(1, 2, 3));
   // Area lights: the light quad, the light sphere, and the emitter quad object.
   CHECK(light_set(sc).size() == 4);  // and the point light
   REQUIRE(sc.spheres.size() == 2);

@@ -164,7 +164,7 @@ TEST_CASE("whitted: the default scene built in C++ is scenes/default.yaml, bit f
   CHECK(cpp.spheres.size() == yaml.sc.spheres.size());
   CHECK(cpp.planes.size() == yaml.sc.planes.size());
   CHECK(cpp.quads.size() == yaml.sc.quads.size());
-  CHECK(cpp.point_lights.size() == yaml.sc.point_lights.size());
+  CHECK(cpp.lights.size() == yaml.sc.lights.size());  // point lights (lights/point.hpp)
   REQUIRE(cpp.meshes.size() == yaml.sc.meshes.size());
   CHECK(cpp.meshes[0].shape.triangle_count() == yaml.sc.meshes[0].shape.triangle_count());
   CHECK(cpp.settings.width == yaml.sc.settings.width);

@@ -37,8 +37,8 @@ int main(int argc, char** argv) {
     const std::size_t objects = ls.sc.bounded_count() + ls.sc.planes.size();
     std::printf("summary: loaded %s in %.3f s: %zu materials, %zu objects, %zu point lights, %zu area lights, "
                 "image %dx%d at %d spp\n",
-                scene_path.c_str(), seconds, ls.sc.materials.size(), objects, ls.sc.point_lights.size(),
-                light_set(ls.sc).size() - ls.sc.point_lights.size(), ls.sc.settings.width, ls.sc.settings.height, ls.sc.settings.spp);
+                scene_path.c_str(), seconds, ls.sc.materials.size(), objects, ls.sc.lights.size(),
+                light_set(ls.sc).size() - ls.sc.lights.size(), ls.sc.settings.width, ls.sc.settings.height, ls.sc.settings.spp);
     return 0;
   });
 }

@@ -24,11 +24,13 @@
 // image and noise textures (a texture table, the images' texels in one array) and the
 // environment light, whose map and sampling tables are packed from environment.hpp's own.
 // What the kernel cannot run is refused here, by name, before anything is built: a user shape
-// (C++ intersection code), a custom BSDF (C++ scattering code), participating media.
+// (C++ intersection code), a custom BSDF (C++ scattering code), a light kind without a pack()
+// (lights/light.hpp: a course's light), participating media.
 //
 // The features a scene uses become -D switches (build_options()), so the kernel compiled for a
 // scene of diffuse spheres has no triangle, BVH, glass or Phong code at all.
 #include <zraka/lights/environment.hpp>
+#include <zraka/lights/light.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/scene/lights.hpp>
 #include <zraka/textures/noise.hpp>
@@ -149,6 +151,7 @@ static_assert(sizeof(gpu_environment) == 64 && offsetof(gpu_environment, light) 
               offsetof(gpu_environment, cos_rotation) == 48);
 static_assert(sizeof(gpu_light) == 64 && offsetof(gpu_light, kind) == 32 && offsetof(gpu_light, cdf) == 52);
 static_assert(sizeof(gpu_light_triangle) == 48);
+static_assert(gpu_light_point == light_kinds::point::kernel_kind);
 static_assert(sizeof(gpu_camera) == 112 && offsetof(gpu_camera, lens_radius) == 96);
 
 // What a scene uses: each flag is one -D switch of the kernel.
@@ -358,6 +361,12 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
   if (!sc.media.empty())  // book 6.1: the kernel has no free-flight sampling yet
     throw error("realtime: the scene has participating media ('" + sc.media[0].name +
                 "'), which the OpenCL kernel does not render; " + render_it_with(sc));
+  for (std::size_t i = 0; i < sc.lights.size(); ++i) {
+    kernel_light k;
+    if (!pack_light(sc.lights[i], k))
+      throw error("realtime: light " + std::to_string(i) + " is of type '" + light_type(sc.lights[i]) +
+                  "', a course's light, which the OpenCL kernel cannot run; " + render_it_with(sc));
+  }
   for_each_object(sc, [&](object_ref o) {
     const material& m = sc.material_of(o);
     if (is_custom(m))
@@ -483,13 +492,14 @@ gpu_scene pack_scene(const scene_t<T>& sc, int width, int height, const path_opt
       g.lights.push_back(o);
       continue;
     }
-    if (l.point >= 0) {
-      const auto& pl = sc.point_lights[std::size_t(l.point)];
-      o.kind = gpu_light_point;
+    if (l.point >= 0) {  // a light kind's own numbers (lights/kernel_light.hpp)
+      kernel_light k;
+      pack_light(sc.lights[std::size_t(l.point)], k);
+      o.kind = k.kind;
       o.object = l.point;
-      o.position = to_gpu(pl.position);
-      o.intensity = to_gpu(pl.intensity);
-      f.point_lights = true;
+      o.position = {k.position[0], k.position[1], k.position[2], 0.0f};
+      o.intensity = {k.intensity[0], k.intensity[1], k.intensity[2], 0.0f};
+      f.point_lights |= k.kind == gpu_light_point;
       g.lights.push_back(o);
       continue;
     }

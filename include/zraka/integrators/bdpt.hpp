@@ -281,7 +281,7 @@ template <class T> class bdpt_t {
   // The radiance light vertex y0 sends along w.
   rgb light_Le(const vertex& y0, const vec3_t<T>& w) const {
     const auto& l = lights_.lights()[std::size_t(y0.light)];
-    if (l.point >= 0) return sc_.point_lights[std::size_t(l.point)].intensity;
+    if (l.point >= 0) return lights_.intensity_towards(y0.light, w);
     return light_set_t<T>::emitted_towards(sc_.material_of(l.object), y0.n, w);
   }
   // Is the segment between a and b free? Both ends move off their surfaces by their rounding.

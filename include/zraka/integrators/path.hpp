@@ -174,8 +174,8 @@ path_tracer_t<T>::path_tracer_t(const scene_t<T>& scene, const path_options& o)
   if (o.max_depth < 0) throw error("the maximum depth must not be negative, got " + std::to_string(o.max_depth));
   if (o.rr_depth < 0) throw error("the Russian roulette depth must not be negative");
   check_media(scene, o.media);
-  if (o.method == integrator::naive && !scene.point_lights.empty())
-    throw error("integrator naive: the scene has " + std::to_string(scene.point_lights.size()) +
+  if (o.method == integrator::naive && !scene.lights.empty())  // lights/light.hpp: at a point
+    throw error("integrator naive: the scene has " + std::to_string(scene.lights.size()) +
                 " point light(s), which a ray can never hit; use nee or mis");
 }
 

@@ -93,6 +93,10 @@ ZRAKA_COMPILED_FN std::string mitsuba_scene_json(const scene& sc, int width, int
   if (!sc.planes.empty()) throw error("--export: Mitsuba has no infinite plane; use a large quad");
   if (!sc.user_shapes.empty())
     throw error("--export: a user shape ('" + sc.user_shapes[0].shape->name() + "') cannot be exported");
+  for (std::size_t i = 0; i < sc.lights.size(); ++i)  // the converter knows point lights (lights/point.hpp)
+    if (!sc.lights[i].is<light_kinds::point>())
+      throw error("--export: light " + std::to_string(i) + " is of type '" + light_type(sc.lights[i]) +
+                  "', which the converter does not know; only point lights are exported");
   for (const medium& md : sc.media)
     if (!md.homogeneous()) throw error("--export: medium '" + md.name + "' is a density grid; only homogeneous media are exported");
   // Every material's fields first: what cannot be exported is refused before anything is written.
@@ -215,11 +219,19 @@ ZRAKA_COMPILED_FN std::string mitsuba_scene_json(const scene& sc, int width, int
       tri(t.a, t.b, t.c, m.material);
     }
   o << "],\n  \"point_lights\": [";
-  for (std::size_t i = 0; i < sc.point_lights.size(); ++i) {
-    o << (i ? ",\n    " : "\n    ") << "{\"position\": ";
-    v3(sc.point_lights[i].position);
-    o << ", \"intensity\": ";
-    v3(sc.point_lights[i].intensity);
+  // A point light's own writer (lights/point.hpp) fills {"position": [...], "intensity": [...]}.
+  struct json_writer {
+    std::ostringstream& o;
+    decltype(v3)& vector;
+    bool first = true;
+    void key(const char* k) { o << (first ? "{\"" : ", \"") << k << "\": ", first = false; }
+    void point(const char* k, const vec3& p) { key(k), vector(p); }
+    void colour(const char* k, const rgb& c) { key(k), vector(c); }
+  };
+  for (std::size_t i = 0; i < sc.lights.size(); ++i) {
+    o << (i ? ",\n    " : "\n    ");
+    json_writer w{o, v3};
+    sc.lights[i].get<light_kinds::point>()->write(w);
     o << "}";
   }
   o << "]\n}\n";

@@ -40,6 +40,7 @@
 #endif
 #include <zraka/scene/scene.hpp>
 #include <zraka/materials/builtin.hpp>
+#include <zraka/lights/builtin.hpp>
 #include <zraka/scene/scene_registry.hpp>
 #include <zraka/geometry/tessellate.hpp>
 
@@ -669,15 +670,7 @@ class scene_reader {
       const std::string type = text(required(l, "type", path), path + ".type");
       YAML::Node r;
       r["type"] = type;
-      if (type == "point") {
-        keys(l, path, {"type", "position", "intensity"});
-        point_light_t<double> p;
-        p.position = vector3(required(l, "position", path), path + ".position");
-        if (l["intensity"]) p.intensity = colour(l["intensity"], path + ".intensity");
-        out_.sc.add(p);
-        r["position"] = flow(p.position);
-        r["intensity"] = flow(p.intensity);
-      } else if (type == "quad" || type == "sphere") {
+      if (type == "quad" || type == "sphere") {  // shapes that glow, made here
         material m = material::emitter(rgb(scene_file_defaults::area_light_radiance));
         if (type == "quad") {
           keys(l, path, {"type", "corner", "u", "v", "radiance"});
@@ -701,8 +694,13 @@ class scene_reader {
           r["radius"] = num(rad);
         }
         r["radiance"] = flow(m.radiance);
+      } else if (const auto* reg = registry_.light_entry(type)) {  // lights/builtin.hpp's and a course's
+        strict_keys(l, path, reg->builtin ? "" : type, {"type"}, reg->keys);
+        light made;
+        located(l, path, [&] { made = reg->make(scene_node(*this, l, path, type, reg->keys, r)); });
+        out_.sc.add(std::move(made));
       } else {
-        fail(l["type"], path + ".type", "unknown light type '" + type + "' (expected point, quad or sphere)");
+        fail(l["type"], path + ".type", "unknown light type '" + type + "' (expected " + registry_.light_types() + ")");
       }
       r.SetStyle(YAML::EmitterStyle::Flow);
       resolved_["lights"].push_back(r);
@@ -962,7 +960,7 @@ class scene_reader {
     return m;
   }
   // Every key of n is one of `common` or `own`, once. type: named in the message ("unknown key
-  // for a disk"), or "" for a built-in material, whose message is that of every other section.
+  // for a disk"), or "" for a built-in kind, whose message is that of every other section.
   void strict_keys(const YAML::Node& n, const std::string& path, const std::string& type,
                    std::initializer_list<const char*> common, const std::vector<std::string>& own) const {
     std::string list;
@@ -1088,11 +1086,16 @@ ZRAKA_SCENE_FILE_FN texture scene_node::texture(const std::string& key) const {
 }
 
 // ---------------------------------------------------------------- scene_registry
-// Here, not in scene_registry.hpp: the built-in readers (materials/builtin.hpp) read a scene_node.
+// Here, not in scene_registry.hpp: the built-in readers (materials/builtin.hpp, lights/builtin.hpp)
+// read a scene_node.
 ZRAKA_SCENE_FILE_FN scene_registry::scene_registry() {
   register_builtin_materials(*this);
   builtin_materials_ = material_order_;
   for (auto& kv : materials_) kv.second.builtin = true;
+  register_builtin_lights(*this);
+  for (auto& kv : lights_) kv.second.builtin = true;
+  builtin_lights_ = light_order_;
+  builtin_lights_.insert(builtin_lights_.end(), {"quad", "sphere"});  // the lights section's glowing shapes
 }
 #endif  // ZRAKA_SCENE_FILE_DEFINITIONS
 

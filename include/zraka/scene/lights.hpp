@@ -3,14 +3,16 @@
 // are lights, how one is chosen, how a point on it is sampled, and the density of that choice.
 //
 // A light is every object whose material emits (material.hpp: an emitter, or any glowing
-// surface; two-sided ones from both faces) and every point light. Each is sampled as seen from a
+// surface; two-sided ones from both faces) and every light of scene.lights, the kinds that are
+// not shapes (lights/light.hpp: point lights, a course's own). Each is sampled as seen from a
 // shading point x, and the density is per steradian at x:
 //   sphere     uniform in the cone of directions that see it; from inside, every direction
 //              (each meets the sphere once), so a glowing room works;
 //   quad, triangle, user shape with area sampling
 //              uniform in area, p_A = 1/A, turned into solid angle: p = p_A d^2 / |cos theta_l|;
 //   mesh       a triangle chosen by area, then uniform on it: again p_A = 1/A of the whole mesh;
-//   point      one direction: a delta, pdf 1 (times the choice), Le = I / d^2.
+//   point      one direction: a delta, pdf 1 (times the choice), Le = I / d^2; every kind of
+//              lights/light.hpp samples itself so (its file: point.hpp, a course's custom_light).
 //   environment the scene's environment map (environment.hpp), sampled by its own distribution
 //              over directions; the shadow ray goes to infinity. Its power is estimated as
 //              pi R^2 times the integral of its radiance, R the radius of the scene's bounds.
@@ -19,10 +21,13 @@
 // and the plain background colour. describe() names them, so the choice is never silent.
 //
 // Lights are chosen in proportion to their power (emitted flux: mean radiance x area x pi, twice
-// that when two-sided; 4 pi I for a point light), or uniformly (light_selection::uniform, for
-// comparison: bench/pathtrace_bench measures what choosing by power buys).
+// that when two-sided; 4 pi I for a point light, any kind of light.hpp its own power()), or
+// uniformly (light_selection::uniform, for comparison: bench/pathtrace_bench measures what
+// choosing by power buys).
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/enum_names.hpp>
+#include <zraka/lights/light.hpp>
+#include <zraka/lights/light_sample.hpp>
 #include <zraka/sampling/sampling.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/geometry/spawn.hpp>
@@ -33,6 +38,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace zraka {
@@ -42,40 +48,19 @@ inline constexpr enum_name<light_selection> light_selection_names[] = {{light_se
                                                                        {light_selection::uniform, "uniform"}};
 constexpr std::span<const enum_name<light_selection>> enum_names(light_selection) { return light_selection_names; }  // enum_names.hpp
 
-template <class T> struct light_sample_t {
-  vec3_t<T> point{T(0)};  // on the light
-  vec3_t<T> wi{T(0)};     // unit, from the shading point towards it
-  T pdf = T(0);           // per steradian (a point light: 1), times the choice of the light if chosen
-  rgb Le{0};              // arriving from the light (0 from a one-sided light's back; point: I/d^2)
-  bool delta = false;     // a point light: no other technique can find it
-  segment_t<T> shadow;    // the light is seen if occluded(scene, shadow) is false
-  int light = -1;         // index in the light set
-};
-
 // ---------------------------------------------------------------- emission sampling (book 6.2)
 // Light leaving the lights, for renderers that start paths there (bidirectional path tracing,
-// photon mapping): a point on a light chosen by power, and a direction it leaves in. The
-// position density is per unit area (times the choice of the light); the direction density is
-// per steradian, cosine-weighted from the emitting face (from either face, each with
-// probability 1/2, when two-sided). A point light has a delta position (pdf_position is then
-// the probability of choosing it) and leaves uniformly over the sphere.
-template <class T> struct emission_sample_t {
-  vec3_t<T> point{T(0)};
-  vec3_t<T> normal{T(0)};     // unit outward normal at point; zero for a point light
-  vec3_t<T> p_error{T(0)};    // bound on the error of point
-  vec3_t<T> direction{T(0)};  // unit, leaving the light
-  rgb Le{0};                  // radiance along direction (a point light: its intensity I)
-  T pdf_position = T(0);      // per unit area, times the choice of the light
-  T pdf_direction = T(0);     // per steradian
-  bool delta_position = false;  // a point light
-  int light = -1;
-};
-
+// photon mapping): a point on a light chosen by power, and a direction it leaves in
+// (emission_sample_t, lights/light_sample.hpp). The position density is per unit area (times the
+// choice of the light); the direction density is per steradian, cosine-weighted from the
+// emitting face (from either face, each with probability 1/2, when two-sided). A light that is
+// not a shape has a delta position (pdf_position is then the probability of choosing it) and
+// leaves as its kind samples (a point light: uniformly over the sphere).
 template <class T> class light_set_t {
  public:
   struct light {
-    object_ref object{shape_kind::sphere, -1};  // an area light; index -1 for a point light
-    int point = -1;                             // a point light: index in scene.point_lights
+    object_ref object{shape_kind::sphere, -1};  // an area light; index -1 for a light of scene.lights
+    int point = -1;                             // a light that is not a shape: index in scene.lights
     double power = 0;                           // emitted flux (mean over the channels)
     T area = T(0);                              // area lights
     std::uint32_t first = 0, count = 0;         // meshes: their triangles' range in the area table
@@ -169,10 +154,14 @@ template <class T> class light_set_t {
   // The density per steradian of leaving light i along w from a point with outward normal n.
   T pdf_emission_direction(int i, const vec3_t<T>& n, const vec3_t<T>& w) const {
     const light& l = lights_[std::size_t(i)];
-    if (l.point >= 0) return uniform_sphere_pdf<T>();
+    if (l.point >= 0) return light_pdf_emission_direction(sc_.lights[std::size_t(l.point)], w);
     const T c = glm::dot(n, w);
     if (sc_.material_of(l.object).two_sided) return std::abs(c) / (T(2) * pi<T>);
     return c > T(0) ? c / pi<T> : T(0);
+  }
+  // The intensity light i, one that is not a shape, sends along w.
+  rgb intensity_towards(int i, const vec3_t<T>& w) const {
+    return light_intensity_towards(sc_.lights[std::size_t(lights_[std::size_t(i)].point)], w);
   }
   // The radiance a glowing material sends along w from a point with outward normal n.
   static rgb emitted_towards(const material& m, const vec3_t<T>& n, const vec3_t<T>& w) {
@@ -234,12 +223,12 @@ light_set_t<T>::light_set_t(const scene_t<T>& sc, light_selection sel) : sc_(sc)
   index_[kind(shape_kind::mesh)].assign(sc.meshes.size(), -1);
   index_[kind(shape_kind::user)].assign(sc.user_shapes.size(), -1);
   for_each_object(sc, [&](object_ref o) { add_object(o); });
-  for (std::size_t i = 0; i < sc.point_lights.size(); ++i) {
+  for (std::size_t i = 0; i < sc.lights.size(); ++i) {
     light l;
     l.point = int(i);
-    l.power = 4.0 * pi<double> * mean(sc.point_lights[i].intensity);
-    if (!std::isfinite(l.power) || !is_finite(sc.point_lights[i].intensity))
-      throw error("lights: point light " + std::to_string(i) + " has a non-finite intensity");
+    l.power = light_power(sc.lights[i]);
+    if (!std::isfinite(l.power))
+      throw error("lights: " + light_type(sc.lights[i]) + " light " + std::to_string(i) + " has a non-finite intensity");
     if (l.power > 0) lights_.push_back(l);
   }
   add_environment();
@@ -256,20 +245,13 @@ template <class T>
 std::optional<light_sample_t<T>> light_set_t<T>::sample_one(int i, const hit_t<T>& h, const vec2_t<T>& u) const {
   const light& l = lights_[std::size_t(i)];
   if (l.environment) return sample_environment(i, h, u);
-  light_sample_t<T> s;
-  s.light = i;
-  if (l.point >= 0) {  // one direction; its "density" is a delta, reported as 1
-    const auto& pl = sc_.point_lights[std::size_t(l.point)];
-    const vec3_t<T> to = pl.position - h.p;
-    s.point = pl.position;
-    s.wi = normalize_or_zero(to);
-    s.pdf = T(1);
-    s.Le = pl.intensity / float(length2(to));
-    s.delta = true;
-    s.shadow = spawn_segment(h, s.point);
-    if (s.wi == vec3_t<T>(0) || !is_finite(s.Le)) return std::nullopt;
+  if (l.point >= 0) {  // a kind of lights/light.hpp: one direction, a delta (pdf 1)
+    auto s = sample_light(sc_.lights[std::size_t(l.point)], h);
+    if (s) s->light = i;
     return s;
   }
+  light_sample_t<T> s;
+  s.light = i;
   const material& m = sc_.material_of(l.object);
   hit_t<T> lh;  // the light's surface at the sampled point: its side decides what it emits
   if (l.object.kind == shape_kind::sphere) {
@@ -308,10 +290,16 @@ std::optional<light_sample_t<T>> light_set_t<T>::sample_one(int i, const hit_t<T
 template <class T>
 std::string light_set_t<T>::describe() const {
   std::array<int, 6> per_kind{};
-  int points = 0;
+  std::vector<std::pair<std::string, int>> others;  // the kinds of scene.lights, in order of appearance
   for (const light& l : lights_)
-    if (l.point >= 0) ++points;
-    else if (!l.environment) ++per_kind[kind(l.object.kind)];
+    if (l.point >= 0) {
+      const std::string t = light_type(sc_.lights[std::size_t(l.point)]);
+      auto it = std::find_if(others.begin(), others.end(), [&](const auto& o) { return o.first == t; });
+      if (it == others.end()) others.emplace_back(t, 1);
+      else ++it->second;
+    } else if (!l.environment) {
+      ++per_kind[kind(l.object.kind)];
+    }
   static const char* names[] = {"sphere", "quad", "plane", "triangle", "mesh", "user shape"};
   std::string out = "lights: " + std::to_string(lights_.size());
   std::string parts;
@@ -320,7 +308,7 @@ std::string light_set_t<T>::describe() const {
     parts += (parts.empty() ? "" : ", ") + std::to_string(n) + " " + what + (n == 1 ? "" : "s");
   };
   for (int k = 0; k < 6; ++k) part(per_kind[std::size_t(k)], names[k]);
-  part(points, "point light");
+  for (const auto& [t, n] : others) part(n, t + " light");
   if (environment_ >= 0) part(1, std::string(sc_.environment->is_constant() ? "constant" : "map") + " environment");
   if (!parts.empty()) out += " (" + parts + ")";
   out += selection_ == light_selection::power ? ", chosen by power" : ", chosen uniformly";
@@ -344,14 +332,10 @@ std::optional<emission_sample_t<T>> light_set_t<T>::sample_emission(T u_select, 
   const light& l = lights_[std::size_t(i)];
   emission_sample_t<T> e;
   e.light = i;
-  if (l.point >= 0) {  // a delta in position, uniform over the sphere of directions
-    const auto& pl = sc_.point_lights[std::size_t(l.point)];
-    e.point = pl.position;
-    e.direction = sample_uniform_sphere(u_dir);
-    e.Le = pl.intensity;
+  if (l.point >= 0) {  // a delta in position, a direction as its kind samples (lights/light.hpp)
+    e = sample_light_emission(sc_.lights[std::size_t(l.point)], u_dir);
+    e.light = i;
     e.pdf_position = selection_pdf(i);
-    e.pdf_direction = uniform_sphere_pdf<T>();
-    e.delta_position = true;
     return e;
   }
   const auto sp = emission_point(l, u_pos);

@@ -1,8 +1,8 @@
 #pragma once
 // Which program can render a scene that a renderer refuses (whitted.hpp, gpu_scene.hpp): the path
-// tracer renders every kind, built in or a course's own. A course's shapes and materials (user
-// shapes, custom BSDFs: scene_registry.hpp) exist only in its C++ code, so chapter 2.3's `pathtrace`
-// cannot load a scene that uses them; the refusal then names the program that can, the course's
+// tracer renders every kind, built in or a course's own. A course's shapes, materials and lights
+// (user shapes, custom BSDFs, custom lights: scene_registry.hpp) exist only in its C++ code, so
+// chapter 2.3's `pathtrace` cannot load a scene that uses them; the refusal then names the program that can, the course's
 // own, built on zraka::pathtrace_main (app/pathtrace_main.hpp) with the registry that has them.
 #include <zraka/materials/material.hpp>
 #include <zraka/scene/scene.hpp>
@@ -24,6 +24,8 @@ template <class T> std::string render_it_with(const scene_t<T>& sc) {
   for (const auto& u : sc.user_shapes) note(u.shape->name());
   for (const material& m : sc.materials)  // every material: an unused one also stops the loader
     if (is_custom(m)) note(m.get<material_kinds::custom>()->bsdf->name());
+  for (const light& l : sc.lights)  // lights/light.hpp: a course's light kind
+    if (l.is<light_kinds::custom>()) note(light_type(l));
   if (own.empty()) return "render it with pathtrace";
   std::string list;
   for (std::size_t i = 0; i < own.size(); ++i)

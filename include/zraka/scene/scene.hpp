@@ -1,8 +1,9 @@
 #pragma once
 // A scene described in code (book 2.2, 2.3, 4.1): materials, objects that name their material by
-// index, point lights, a background colour, the camera and the render settings (the thesis's
-// "hyper-parameters", Def 4.1.1). The scene file loader (scene_file.hpp) fills the same struct.
-// This header holds the data; scene_query.hpp asks it for hits, lights.hpp for its lights.
+// index, lights that are not shapes (lights/light.hpp: point lights, a course's own), a background
+// colour, the camera and the render settings (the thesis's "hyper-parameters", Def 4.1.1).
+// The scene file loader (scene_file.hpp) fills the same struct. This header holds the data;
+// scene_query.hpp asks it for hits, lights.hpp for its lights.
 //
 // Objects: spheres, quads (a box is six of them), infinite planes, single triangles, meshes
 // (each with its own triangle BVH, built when the mesh is added) and user shapes
@@ -15,6 +16,7 @@
 #include <zraka/cameras/camera.hpp>
 #include <zraka/core/compiled.hpp>
 #include <zraka/lights/environment.hpp>
+#include <zraka/lights/light.hpp>
 #include <zraka/materials/material.hpp>
 #include <zraka/media/medium.hpp>
 #include <zraka/geometry/mesh.hpp>
@@ -48,12 +50,6 @@ struct object_ref {
   shape_kind kind;
   int index;  // into the scene's vector of that kind
   bool operator==(const object_ref&) const = default;
-};
-
-// A point light: radiant intensity I, so the irradiance at distance d, facing it, is I / d^2.
-template <class T> struct point_light_t {
-  vec3_t<T> position{T(0)};
-  rgb intensity{20.0f};
 };
 
 // An object: a shape and the index of its material.
@@ -92,7 +88,9 @@ template <class T> struct scene_t {
   std::vector<mesh_object_t<T>> meshes;
   std::vector<object_t<user_shape_ptr<T>>> user_shapes;
   std::vector<std::string> user_shape_labels;  // by index, from the scene file: "object 'ring'", "objects[2]"
-  std::vector<point_light_t<T>> point_lights;
+  // The lights that are not shapes (lights/light.hpp: point lights, a course's own kinds), in the
+  // order they were added; glowing objects are lights too (scene/lights.hpp).
+  std::vector<light> lights;
   rgb background{0};               // radiance of rays that leave the scene (hit only)
   // The environment light (environment.hpp): when set, rays that leave the scene see it instead
   // of the background, and the lights sample it (lights.hpp).
@@ -151,7 +149,7 @@ template <class T> struct scene_t {
       throw error("user shape '" + s->name() + "': its bounds must be a finite, non-empty box");
     return push(user_shapes, std::move(s), mat, shape_kind::user);
   }
-  void add(const point_light_t<T>& l) { point_lights.push_back(l); }
+  void add(light l) { lights.push_back(std::move(l)); }  // a point light: add(point_light_t<T>{p, I})
   int add_medium(const medium& m) {
     m.check();
     media.push_back(m);

@@ -79,9 +79,13 @@ template <class U, class T> scene_t<U> scene_in(const scene_t<T>& s) {
   if (!s.user_shapes.empty())
     throw error("user shape '" + s.user_shapes.front().shape->name() + "' is written in " + detail::precision_name<T>() +
                 " (user_shape.hpp) and cannot be converted; render this scene in " + detail::precision_name<T>());
-  for (std::size_t i = 0; i < s.point_lights.size(); ++i)
-    f.point_lights.push_back({coordinates_in<U>(s.point_lights[i].position, "point light " + std::to_string(i)),
-                              s.point_lights[i].intensity});
+  // The light kinds keep double parameters (lights/light.hpp); a point light's position must
+  // still fit in U, where it is sampled.
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const light& l = s.lights[i];
+    if (const auto* p = l.get<light_kinds::point>()) coordinates_in<U>(p->position, "point light " + std::to_string(i));
+  }
+  f.lights = s.lights;
   f.background = s.background;
   f.environment = s.environment;
   f.ambient = s.ambient;

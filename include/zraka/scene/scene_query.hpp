@@ -8,6 +8,7 @@
 #include <zraka/scene/scene.hpp>
 #include <zraka/geometry/spawn.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -99,7 +100,11 @@ template <class T> std::string describe_built(const scene_t<T>& sc) {
   std::snprintf(buf, sizeof buf, " (%zu triangles, BVH %.3f s)", tris, secs);
   item(sc.meshes.size(), "mesh", "meshes", buf);
   item(sc.user_shapes.size(), "user shape", "user shapes");
-  item(sc.point_lights.size(), "point light", "point lights");
+  const auto points = std::size_t(std::count_if(sc.lights.begin(), sc.lights.end(), [](const light& l) {
+    return l.is<light_kinds::point>();
+  }));
+  item(points, "point light", "point lights");
+  item(sc.lights.size() - points, "course's light", "course's lights");  // lights/custom_light.hpp
   if (first) out += " nothing";
   if (sc.has_object_bvh()) {
     std::snprintf(buf, sizeof buf, "; object BVH over %zu objects (%.3f s)", sc.accel.objects.size(),

@@ -19,6 +19,9 @@
 // registered twice, is refused when it is registered.
 // The built-in materials come through the same door: a registry starts with them, each
 // registered by add_material in materials/builtin.hpp, one line per kind.
+// Lights that are not shapes come through one door: a registry starts with the built-in kinds,
+// each registered by add_light in lights/builtin.hpp, one line per kind, and a course adds its
+// own (a spot light: lights/custom_light.hpp) with the same call.
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/materials/material.hpp>
@@ -45,14 +48,16 @@ class scene_registry {
  public:
   using shape_factory = std::function<user_shape_ptr<double>(const scene_node&)>;
   using material_factory = std::function<material(const scene_node&)>;
+  using light_factory = std::function<light(const scene_node&)>;
   template <class F> struct entry {
     std::vector<std::string> keys;  // allowed besides the common ones
     F make;
-    bool builtin = false;  // registered by the registry itself (materials/builtin.hpp)
+    bool builtin = false;  // registered by the registry itself (materials/builtin.hpp, lights/builtin.hpp)
   };
 
-  // The built-in material types (materials/builtin.hpp), registered with add_material. Defined
-  // in scene_file.hpp, where their readers' scene_node is.
+  // The built-in material types (materials/builtin.hpp) and light kinds (lights/builtin.hpp),
+  // registered with add_material and add_light. Defined in scene_file.hpp, where their readers'
+  // scene_node is.
   scene_registry();
 
   // A shape: the factory returns the shape; the object's material is the entry's `material`.
@@ -60,22 +65,35 @@ class scene_registry {
   // A material: the factory returns the whole material, usually material::custom(bsdf), with
   // radiance or two_sided set if it glows.
   ZRAKA_COMPILED_FN void add_material(const std::string& type, std::vector<std::string> keys, material_factory make);
+  // A light that is not a shape (lights/light.hpp), in a scene file's lights section: the
+  // factory returns it; a course's is light(light_kinds::custom{std::make_shared<my_light>(...)}).
+  ZRAKA_COMPILED_FN void add_light(const std::string& type, std::vector<std::string> keys, light_factory make);
 
   ZRAKA_COMPILED_FN const entry<shape_factory>* shape(const std::string& type) const;
   ZRAKA_COMPILED_FN const entry<material_factory>* material_type(const std::string& type) const;
+  ZRAKA_COMPILED_FN const entry<light_factory>* light_entry(const std::string& type) const;
   // The built-in material types, in the order of builtin.hpp: "lambertian", "metal", ...
   const std::vector<std::string>& builtin_materials() const { return builtin_materials_; }
-  bool empty() const { return shapes_.empty() && materials_.size() == builtin_materials_.size(); }
+  bool empty() const {
+    return shapes_.empty() && materials_.size() == builtin_materials_.size() && course_lights_ == 0;
+  }
 
   // "sphere, plane, ... or bezier; registered: disk" for an unknown-type message.
   ZRAKA_COMPILED_FN std::string object_types() const;
   ZRAKA_COMPILED_FN std::string material_types() const;
+  // "point, quad or sphere; registered: spot" (quad and sphere: shapes that glow, which the
+  // lights section makes itself).
+  ZRAKA_COMPILED_FN std::string light_types() const;
 
  private:
   std::map<std::string, entry<shape_factory>> shapes_;
   std::map<std::string, entry<material_factory>> materials_;  // the built-in ones too
   std::vector<std::string> builtin_materials_;  // in the order of builtin.hpp, for messages
   std::vector<std::string> material_order_;     // every material type, in the order registered
+  std::map<std::string, entry<light_factory>> lights_;  // the built-in ones too
+  std::vector<std::string> builtin_lights_;  // in the order of builtin.hpp, then quad and sphere
+  std::vector<std::string> light_order_;     // every light type, in the order registered
+  std::size_t course_lights_ = 0;            // of them, registered by a program
 
   template <class M> static const typename M::mapped_type* find(const M& m, const std::string& type);
   template <class M>
@@ -101,6 +119,19 @@ ZRAKA_COMPILED_FN void scene_registry::add_material(const std::string& type, std
   materials_[type] = {std::move(keys), std::move(make)};
   material_order_.push_back(type);
 }
+ZRAKA_COMPILED_FN void scene_registry::add_light(const std::string& type, std::vector<std::string> keys,
+                                                 light_factory make) {
+  check_name(type, builtin_lights_, lights_, "light", {"type"}, keys);
+  if (!make) throw error("scene registry: the factory for light type '" + type + "' is empty");
+  lights_[type] = {std::move(keys), std::move(make)};
+  light_order_.push_back(type);
+  if (!builtin_lights_.empty()) ++course_lights_;  // the constructor has registered the built-in ones
+}
+ZRAKA_COMPILED_FN const scene_registry::entry<scene_registry::light_factory>* scene_registry::light_entry(
+    const std::string& type) const {
+  return find(lights_, type);
+}
+ZRAKA_COMPILED_FN std::string scene_registry::light_types() const { return listing(builtin_lights_, lights_); }
 ZRAKA_COMPILED_FN const scene_registry::entry<scene_registry::shape_factory>* scene_registry::shape(
     const std::string& type) const {
   return find(shapes_, type);
