@@ -19,10 +19,12 @@
 // registered twice, is refused when it is registered.
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/rng.hpp>
 #include <zraka/materials/material.hpp>
 #include <zraka/scene/scene.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <functional>
 #include <initializer_list>
 #include <map>
@@ -31,7 +33,8 @@
 
 namespace zraka {
 
-class scene_node;  // the reader a factory gets (scene_file.hpp)
+class scene_node;     // the reader a factory gets (scene_file.hpp)
+struct path_options;  // the path tracer's options, which an integrator's factory gets (path.hpp)
 
 // The types the scene format itself knows; a registered name must differ from all of them.
 inline const std::vector<std::string>& builtin_object_types() {
@@ -63,6 +66,17 @@ class scene_registry {
   ZRAKA_COMPILED_FN const entry<material_factory>* material_type(const std::string& type) const;
   bool empty() const { return shapes_.empty() && materials_.empty(); }
 
+  // An integrator (the --integrator door, book 2.3 "A program of one's own"): what estimates the
+  // radiance of one camera sample, given the camera ray, the sample's own random stream and a
+  // counter of the rays it traces (render.hpp's sample_context). The factory makes it once per
+  // render, for the scene and the command line's path options (max_depth, rr_depth, lights).
+  // The built-ins naive, nee and mis come through this same call (integrators/integrator_door.hpp).
+  using radiance_fn = std::function<rgb(const ray&, rng&, std::uint64_t&)>;
+  using integrator_factory = std::function<radiance_fn(const zraka::scene&, const path_options&)>;
+  ZRAKA_COMPILED_FN void add_integrator(const std::string& name, integrator_factory make);
+  ZRAKA_COMPILED_FN const integrator_factory* integrator_type(const std::string& name) const;
+  const std::map<std::string, integrator_factory>& integrators() const { return integrators_; }
+
   // "sphere, plane, ... or bezier; registered: disk" for an unknown-type message.
   ZRAKA_COMPILED_FN std::string object_types() const;
   ZRAKA_COMPILED_FN std::string material_types() const;
@@ -70,6 +84,7 @@ class scene_registry {
  private:
   std::map<std::string, entry<shape_factory>> shapes_;
   std::map<std::string, entry<material_factory>> materials_;
+  std::map<std::string, integrator_factory> integrators_;
 
   template <class M> static const typename M::mapped_type* find(const M& m, const std::string& type);
   template <class M>
@@ -105,6 +120,14 @@ ZRAKA_COMPILED_FN const scene_registry::entry<scene_registry::material_factory>*
 ZRAKA_COMPILED_FN std::string scene_registry::object_types() const { return listing(builtin_object_types(), shapes_); }
 ZRAKA_COMPILED_FN std::string scene_registry::material_types() const {
   return listing(builtin_material_types(), materials_);
+}
+ZRAKA_COMPILED_FN void scene_registry::add_integrator(const std::string& name, integrator_factory make) {
+  check_name(name, {}, integrators_, "integrator", {}, {});
+  if (!make) throw error("scene registry: the factory for integrator '" + name + "' is empty");
+  integrators_[name] = std::move(make);
+}
+ZRAKA_COMPILED_FN const scene_registry::integrator_factory* scene_registry::integrator_type(const std::string& name) const {
+  return find(integrators_, name);
 }
 
 template <class M> const typename M::mapped_type* scene_registry::find(const M& m, const std::string& type) {
