@@ -245,6 +245,17 @@ TEST_CASE("course program: realtime_main refuses the course's torus by name befo
 namespace {
 const char* const ao_scene = "tests/course/ao.yaml";  // under the resource root
 
+// tests/course/ao.yaml with settings.integrator set, written to `file`.
+void write_ao_scene(const fs::path& file, const std::string& integrator) {
+  std::ifstream in(fs::path(resource_root()) / ao_scene);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string from = "settings: {";
+  yaml.replace(yaml.find(from), from.size(), from + "integrator: " + integrator + ", ");
+  std::ofstream(file) << yaml;
+}
+
 scene_registry ao_registry(double max_distance) {
   scene_registry reg = course_registry();
   course::register_ao(reg, max_distance);
@@ -332,6 +343,40 @@ TEST_CASE("course program: --integrator takes the built-ins and the course's int
   CHECK_FALSE(fs::exists(out));
 }
 
+TEST_CASE("course program: a scene file's settings.integrator names the course's integrator") {
+  const scene_registry reg = ao_registry(0.9);
+  auto course_main = [&](int argc, char** argv) { return pathtrace_main(argc, argv, reg); };
+  const fs::path file = scratch("ao-settings.yaml"), out = scratch("ao-settings.pfm");
+  auto write_scene = [&](const std::string& integrator) { write_ao_scene(file, integrator); };
+  write_scene("ao");
+  const loaded_scene ls = load_scene_argument(file.string(), reg);
+  CHECK(ls.sc.settings.integrator == "ao");
+  // No --integrator: the scene's, so the reach of 0.9 gives 1 wherever a surface is seen.
+  run_result r = run(course_main, {"course", "--scene", file.string(), "--centre", "--out", out.string()});
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  image img = read_float_image(out);
+  CHECK(img.at(2, 2) == rgb(1.0f));
+  // --integrator over the scene's: the path tracer, whose floor is lit by nothing.
+  r = run(course_main, {"course", "--scene", file.string(), "--integrator", "nee", "--centre", "--out", out.string()});
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  img = read_float_image(out);
+  CHECK(img.at(2, 2) == rgb(0.0f));
+  // Whitted cannot run it and says so by name.
+  const run_result w = run([&](int argc, char** argv) { return whitted_main(argc, argv, reg); },
+                           {"course-whitted", "--scene", file.string(), "--out", scratch("w.png").string()});
+  CHECK(w.code == 1);
+  CHECK(w.err == "error: whitted: integrator 'ao' is a course's integrator, which the Whitted ray tracer cannot "
+                 "run; render it with your course's program built on zraka::pathtrace_main\n");
+  CHECK_FALSE(fs::exists(scratch("w.png")));
+  // A name nobody registered: the file and the field, and the names there are.
+  write_scene("fog");
+  r = run(course_main, {"course", "--scene", file.string(), "--out", out.string()});
+  CHECK(r.code == 1);
+  CHECK(r.err == "error: " + file.string() + ": settings.integrator: unknown integrator 'fog' (naive, nee, mis; "
+                 "registered: ao)\n");
+  fs::remove(file), fs::remove(out);
+}
+
 #if defined(ZRAKA_COMPILED_OPENCL) && defined(ZRAKA_COMPILED_GL)
 TEST_CASE("course program: realtime_main refuses the course's integrator by name before it needs a device") {
   const scene_registry reg = ao_registry(1);
@@ -343,6 +388,14 @@ TEST_CASE("course program: realtime_main refuses the course's integrator by name
   CHECK(r.code == 1);
   CHECK(r.err == "error: realtime: integrator 'ao' is a course's integrator, which the OpenCL kernel cannot run; "
                  "render it with your course's program built on zraka::pathtrace_main\n");
+  CHECK_FALSE(fs::exists(out));  // The same when the scene file names it (settings.integrator).
+  const fs::path file = scratch("ao-realtime.yaml");
+  write_ao_scene(file, "ao");
+  const run_result f = run([&](int argc, char** argv) { return realtime_main(argc, argv, reg); },
+                           {"course-realtime", "--scene", file.string(), "--headless", "--out", out.string()});
+  CHECK(f.code == 1);
+  CHECK(f.err == r.err);
   CHECK_FALSE(fs::exists(out));
+  fs::remove(file);
 }
 #endif

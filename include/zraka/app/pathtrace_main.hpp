@@ -105,6 +105,7 @@ ZRAKA_PATHTRACE_MAIN_FN int pathtrace_main_in(int argc, char** argv, const scene
     const std::string& scene_name = opt.scene;
     scene sc = load_scene_argument_in(scene_name, root, registry).sc;  // the course's kinds too
     opt.apply_to(sc.settings);
+    method = chosen_integrator(method, opt.given("--integrator"), sc, scene_name, registry);  // or the scene's
     const int W = opt.width, H = opt.height;
     for (std::string* f : {&pfm, &report, &json})
       if (!f->empty()) *f = output_file_under(*f, root).string();

@@ -232,6 +232,8 @@ ZRAKA_REALTIME_MAIN_FN int realtime_main_in(int argc, char** argv, const scene_r
       sc.settings.max_depth = 8, sc.settings.seed = 1, sc.settings.spp = 8 * spf;
     }
     opt.apply_to(sc.settings);  // the command line over the scene's settings, checked
+    method = chosen_integrator(method, opt.given("--integrator"), sc, opt.scene, registry);  // or the scene's
+    refuse_course_integrator(method, registry, "realtime", "the OpenCL kernel");
     const int width = opt.width, height = opt.height, depth = opt.depth;
     const std::uint64_t seed = opt.seed;
     const std::string& out = opt.out;

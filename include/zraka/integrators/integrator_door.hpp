@@ -64,6 +64,20 @@ inline const scene_registry::integrator_factory& find_integrator(const std::stri
               (own.empty() ? "" : "; registered: " + own) + ")");
 }
 
+// The integrator a program renders with: --integrator when it was given (`option`), else the
+// scene file's settings.integrator, else the option's default. A name the scene file gives is
+// checked here, where the course's names are known, and refused with the file and the field.
+inline std::string chosen_integrator(const std::string& option, bool given, const scene& sc,
+                                     const std::string& scene_name, const scene_registry& course) {
+  if (given || sc.settings.integrator.empty()) return option;
+  try {
+    (void)find_integrator(sc.settings.integrator, course);
+  } catch (const error& e) {
+    throw error(scene_name + ": settings.integrator: " + e.what());
+  }
+  return sc.settings.integrator;
+}
+
 // A renderer that runs the built-ins only (realtime's kernel) refuses a course's integrator by
 // name and says which program can: "realtime: integrator 'ao' is a course's integrator, which the
 // OpenCL kernel cannot run; render it with your course's program built on zraka::pathtrace_main".
