@@ -84,7 +84,6 @@ class scene_registry {
  private:
   std::map<std::string, entry<shape_factory>> shapes_;
   std::map<std::string, entry<material_factory>> materials_;
-  std::map<std::string, integrator_factory> integrators_;
 
   template <class M> static const typename M::mapped_type* find(const M& m, const std::string& type);
   template <class M>
@@ -92,6 +91,8 @@ class scene_registry {
                          const char* what, std::initializer_list<const char*> common,
                          const std::vector<std::string>& keys);
   template <class M> static std::string listing(const std::vector<std::string>& builtin, const M& registered);
+
+  std::map<std::string, integrator_factory> integrators_;  // the integrator door, built-ins apart
 };
 
 // The members are compiled once into zraka::compiled (compiled.hpp): the maps' code is then not
