@@ -6,6 +6,7 @@
 // where the torus is seen; Whitted and the OpenCL packer (and, where zraka has them compiled,
 // whitted_main and realtime_main) refuse the scene by the kind's name and name the program that
 // can render it; chapter 2.3's `pathtrace` (no registry) cannot load it at all.
+#include "course/ao.hpp"
 #include "course/torus.hpp"
 
 #include <zraka/app/pathtrace_main.hpp>
@@ -236,5 +237,165 @@ TEST_CASE("course program: realtime_main refuses the course's torus by name befo
   CHECK(r.err == "error: realtime: object 'ring' is a user shape ('torus'), which the OpenCL kernel cannot run; " +
                      who_can + "\n");
   CHECK_FALSE(fs::exists(out));
+}
+#endif
+
+// The integrator door (scene_registry::add_integrator): the course's ambient occlusion
+// (tests/course/ao.hpp) chosen by --integrator, against the closed forms of tests/course/ao.yaml.
+namespace {
+const char* const ao_scene = "tests/course/ao.yaml";  // under the resource root
+
+// tests/course/ao.yaml with settings.integrator set, written to `file`.
+void write_ao_scene(const fs::path& file, const std::string& integrator) {
+  std::ifstream in(fs::path(resource_root()) / ao_scene);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string from = "settings: {";
+  yaml.replace(yaml.find(from), from.size(), from + "integrator: " + integrator + ", ");
+  std::ofstream(file) << yaml;
+}
+
+scene_registry ao_registry(double max_distance) {
+  scene_registry reg = course_registry();
+  course::register_ao(reg, max_distance);
+  return reg;
+}
+}  // namespace
+
+TEST_CASE("course program: pathtrace_main renders the course's ambient occlusion where its closed form puts it") {
+  const fs::path out = scratch("ao.pfm");
+  const loaded_scene ls = load_scene_argument(ao_scene, scene_registry{});
+  const auto cam = ls.sc.prepared_camera();
+
+  SUBCASE("a reach shorter than the gap between ball and floor: 1 exactly wherever a surface is seen") {
+    const scene_registry reg = ao_registry(0.9);
+    const run_result r = run([&](int argc, char** argv) { return pathtrace_main(argc, argv, reg); },
+                             {"course", "--scene", ao_scene, "--integrator", "ao", "--width", "16", "--height", "16",
+                              "--spp", "64", "--centre", "--out", out.string()});
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    const image img = read_float_image(out);
+    int seen = 0, sky = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        scene_hit sh;
+        const bool hit = nearest_hit(ls.sc, cam.generate((x + 0.5) / img.width, (y + 0.5) / img.height), sh);
+        (hit ? seen : sky) += 1;
+        CHECK_MESSAGE(img.at(x, y) == rgb(hit ? 1.0f : 0.0f), "pixel " << x << "," << y);
+      }
+    CHECK(seen > 100);  // the floor and the ball
+    CHECK(sky > 10);    // above the horizon
+  }
+
+  SUBCASE("a long reach: 1 - sin^2(alpha) = 3/4 under the ball, within its Monte Carlo error") {
+    const scene_registry reg = ao_registry(100);
+    const int spp = 32768;
+    const run_result r = run([&](int argc, char** argv) { return pathtrace_main(argc, argv, reg); },
+                             {"course", "--scene", ao_scene, "--integrator", "ao", "--spp", std::to_string(spp),
+                              "--centre", "--seed", "5", "--out", out.string()});
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    const image img = read_float_image(out);
+    REQUIRE(img.width == 5);
+    REQUIRE(img.height == 5);
+    // The central pixel's ray (--centre) meets the floor at the origin, under the ball.
+    scene_hit sh;
+    REQUIRE(nearest_hit(ls.sc, cam.generate(0.5, 0.5), sh));
+    REQUIRE(glm::length(sh.h.p) < 1e-9);
+    const double expected = 1 - 0.25, sigma = std::sqrt(expected * (1 - expected) / spp);
+    const double got = img.at(2, 2).x;
+    INFO("ambient occlusion under the ball " << got << ", expected " << expected << " +- " << sigma);
+    CHECK(std::abs(got - expected) < 4 * sigma);
+  }
+  fs::remove(out);
+}
+
+TEST_CASE("course program: --integrator takes the built-ins and the course's integrators by name") {
+  const scene_registry reg = ao_registry(1);
+  auto course_main = [&](int argc, char** argv) { return pathtrace_main(argc, argv, reg); };
+  const fs::path out = scratch("names.png");
+  run_result r = run(course_main, {"course", "--scene", ao_scene, "--integrator", "fog", "--out", out.string()});
+  CHECK(r.code == 1);
+  CHECK(r.err == "error: unknown integrator 'fog' (naive, nee, mis; registered: ao)\n");
+  CHECK_FALSE(fs::exists(out));
+  // Chapter 2.3's pathtrace (no registry) names the built-ins only, as before the door.
+  r = run([](int argc, char** argv) { return pathtrace_main(argc, argv); },
+          {"pathtrace", "--scene", ao_scene, "--integrator", "ao", "--out", out.string()});
+  CHECK(r.code == 1);
+  CHECK(r.err == "error: unknown integrator 'ao' (naive, nee, mis)\n");
+  // --help lists the registered ones.
+  std::ostringstream help;
+  std::streambuf* old = std::cout.rdbuf(help.rdbuf());
+  r = run(course_main, {"course", "--help"});
+  std::cout.rdbuf(old);
+  CHECK(r.code == 0);
+  CHECK_MESSAGE(help.str().find("naive, nee or mis; registered: ao") != std::string::npos, help.str());
+  // A course's integrator may not take a built-in's name, nor be registered twice.
+  scene_registry twice = ao_registry(1);
+  CHECK_THROWS_WITH_AS(course::register_ao(twice, 1), "scene registry: integrator type 'ao' is registered twice", error);
+  scene_registry clash;
+  clash.add_integrator("mis", [](const scene&, const path_options&) {
+    return [](const ray&, rng&, std::uint64_t&) { return rgb(0); };
+  });
+  r = run([&](int argc, char** argv) { return pathtrace_main(argc, argv, clash); },
+          {"course", "--scene", ao_scene, "--out", out.string()});
+  CHECK(r.code == 1);
+  CHECK(r.err == "error: scene registry: integrator 'mis' is built in; a registered integrator must have a new name\n");
+  CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("course program: a scene file's settings.integrator names the course's integrator") {
+  const scene_registry reg = ao_registry(0.9);
+  auto course_main = [&](int argc, char** argv) { return pathtrace_main(argc, argv, reg); };
+  const fs::path file = scratch("ao-settings.yaml"), out = scratch("ao-settings.pfm");
+  auto write_scene = [&](const std::string& integrator) { write_ao_scene(file, integrator); };
+  write_scene("ao");
+  const loaded_scene ls = load_scene_argument(file.string(), reg);
+  CHECK(ls.sc.settings.integrator == "ao");
+  // No --integrator: the scene's, so the reach of 0.9 gives 1 wherever a surface is seen.
+  run_result r = run(course_main, {"course", "--scene", file.string(), "--centre", "--out", out.string()});
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  image img = read_float_image(out);
+  CHECK(img.at(2, 2) == rgb(1.0f));
+  // --integrator over the scene's: the path tracer, whose floor is lit by nothing.
+  r = run(course_main, {"course", "--scene", file.string(), "--integrator", "nee", "--centre", "--out", out.string()});
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  img = read_float_image(out);
+  CHECK(img.at(2, 2) == rgb(0.0f));
+  // Whitted cannot run it and says so by name.
+  const run_result w = run([&](int argc, char** argv) { return whitted_main(argc, argv, reg); },
+                           {"course-whitted", "--scene", file.string(), "--out", scratch("w.png").string()});
+  CHECK(w.code == 1);
+  CHECK(w.err == "error: whitted: integrator 'ao' is a course's integrator, which the Whitted ray tracer cannot "
+                 "run; render it with your course's program built on zraka::pathtrace_main\n");
+  CHECK_FALSE(fs::exists(scratch("w.png")));
+  // A name nobody registered: the file and the field, and the names there are.
+  write_scene("fog");
+  r = run(course_main, {"course", "--scene", file.string(), "--out", out.string()});
+  CHECK(r.code == 1);
+  CHECK(r.err == "error: " + file.string() + ": settings.integrator: unknown integrator 'fog' (naive, nee, mis; "
+                 "registered: ao)\n");
+  fs::remove(file), fs::remove(out);
+}
+
+#if defined(ZRAKA_COMPILED_OPENCL) && defined(ZRAKA_COMPILED_GL)
+TEST_CASE("course program: realtime_main refuses the course's integrator by name before it needs a device") {
+  const scene_registry reg = ao_registry(1);
+  const fs::path out = scratch("realtime-ao.png");
+  fs::remove(out);
+  const run_result r = run([&](int argc, char** argv) { return realtime_main(argc, argv, reg); },
+                           {"course-realtime", "--scene", ao_scene, "--integrator", "ao", "--headless", "--out",
+                            out.string()});
+  CHECK(r.code == 1);
+  CHECK(r.err == "error: realtime: integrator 'ao' is a course's integrator, which the OpenCL kernel cannot run; "
+                 "render it with your course's program built on zraka::pathtrace_main\n");
+  CHECK_FALSE(fs::exists(out));  // The same when the scene file names it (settings.integrator).
+  const fs::path file = scratch("ao-realtime.yaml");
+  write_ao_scene(file, "ao");
+  const run_result f = run([&](int argc, char** argv) { return realtime_main(argc, argv, reg); },
+                           {"course-realtime", "--scene", file.string(), "--headless", "--out", out.string()});
+  CHECK(f.code == 1);
+  CHECK(f.err == r.err);
+  CHECK_FALSE(fs::exists(out));
+  fs::remove(file);
 }
 #endif

@@ -9,6 +9,7 @@
 
 #include <zraka/sampling/estimator.hpp>
 #include <zraka/gpu/gpu_scene.hpp>
+#include <zraka/integrators/integrator_door.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/io/scene_file.hpp>
 #include <zraka/app/testing.hpp>
@@ -249,4 +250,36 @@ objects:
         "realtime: material 'g' is a custom BSDF ('glossy'), which the OpenCL kernel cannot run; render it with "
         "your course's program built on zraka::pathtrace_main (its registry has 'glossy'; chapter 2.3's "
         "pathtrace has the built-in kinds only)");
+}
+
+TEST_CASE("scene registry: integrators by name, the built-ins registered as a course's own") {
+  auto flat = [](const scene&, const path_options&) {
+    return scene_registry::radiance_fn([](const ray&, rng&, std::uint64_t&) { return rgb(0.5f); });
+  };
+  scene_registry reg;
+  reg.add_integrator("flat", flat);
+  CHECK(error_of([&] { reg.add_integrator("flat", flat); }) == "scene registry: integrator type 'flat' is registered twice");
+  CHECK(error_of([&] { reg.add_integrator("Flat", flat); }) ==
+        "scene registry: integrator type 'Flat': a type is a word of a-z, 0-9 and _");
+  CHECK(error_of([&] { reg.add_integrator("none", nullptr); }) == "scene registry: the factory for integrator 'none' is empty");
+  CHECK(integrator_choices(reg) == "naive, nee or mis; registered: flat");
+  CHECK(integrator_choices(scene_registry{}) == "naive, nee or mis");
+  CHECK(error_of([&] { (void)find_integrator("fog", reg); }) == "unknown integrator 'fog' (naive, nee, mis; registered: flat)");
+
+  const loaded_scene ls = parse("objects: [{type: sphere}]\n");
+  // The built-ins' factories give the path tracer itself, with their method: what the program
+  // calls directly (app/pathtrace_main.hpp), as before the door.
+  CHECK(builtin_integrators().integrators().size() == 3);
+  for (const integrator m : {integrator::naive, integrator::nee, integrator::mis}) {
+    const scene_registry::radiance_fn fn = find_integrator(name(m), reg)(ls.sc, path_options{});
+    const path_tracer* t = fn.target<path_tracer>();
+    REQUIRE(t != nullptr);
+    CHECK(t->opt.method == m);
+  }
+  // A course's comes back as it was made.
+  const scene_registry::radiance_fn own = find_integrator("flat", reg)(ls.sc, path_options{});
+  CHECK(own.target<path_tracer>() == nullptr);
+  rng g(1, 0, 0);
+  std::uint64_t rays = 0;
+  CHECK(own(ray(vec3(0), vec3(0, 0, 1)), g, rays) == rgb(0.5f));
 }

@@ -1,9 +1,10 @@
 #pragma once
 // The `pathtrace` program (book 2.3) as a function: chapter 2.3's main.cpp calls it with an
-// empty registry, and a course's own program calls it with the registry of its shapes and
-// materials (scene_registry.hpp), so the course's binary has pathtrace's whole command line
-// (--scene names, .yaml and Mitsuba .xml files, --integrator, --sampler, --reference, --report,
-// --window, --time-budget, --seed, --export, ...) and scene files that name its own kinds:
+// empty registry, and a course's own program calls it with the registry of its shapes,
+// materials and integrators (scene_registry.hpp), so the course's binary has pathtrace's whole
+// command line (--scene names, .yaml and Mitsuba .xml files, --integrator, --sampler,
+// --reference, --report, --window, --time-budget, --seed, --export, ...) and scene files that
+// name its own kinds:
 //
 //     int main(int argc, char** argv) {
 //       zraka::scene_registry reg;
@@ -14,9 +15,11 @@
 // What it does: renders a scene with one of three integrators of the rendering equation
 // (path.hpp): `naive` (bounce until a light is hit by chance), `nee` (next-event estimation: ask
 // a light at every diffuse hit) and `mis` (light and BSDF sampling combined by multiple
-// importance sampling). The image is refined in passes that double the samples per pixel
-// (progressive.hpp); with --reference it prints, after every pass, the error against that image
-// and the time so far, and --report writes the same table as CSV for tools/plot_convergence.py.
+// importance sampling), or with an integrator the course registered (reg.add_integrator;
+// integrators/integrator_door.hpp looks the name up among both). The image is refined in passes
+// that double the samples per pixel (progressive.hpp); with --reference it prints, after every
+// pass, the error against that image and the time so far, and --report writes the same table as
+// CSV for tools/plot_convergence.py.
 // --time-budget stops the doubling early. --window shows the image as the passes finish
 // (preview_window.hpp). --sampler picks where each sample's numbers come from (samplers.hpp,
 // book 5.1). For `--scene furnace` (named_scenes.hpp) it checks the closed form.
@@ -50,6 +53,7 @@
 #include <zraka/core/stopwatch.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
+#include <zraka/integrators/integrator_door.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/progressive.hpp>
 #include <zraka/io/mitsuba_export.hpp>
@@ -84,7 +88,7 @@ ZRAKA_PATHTRACE_MAIN_FN int pathtrace_main_in(int argc, char** argv, const scene
   double budget = 0;
   bool centre = false;
   zraka::cli_app& app = opt.app;
-  app.add_option("--integrator", method, "naive, nee or mis");
+  app.add_option("--integrator", method, integrator_choices(registry));  // the course's too
   app.add_option("--rr-depth", rr_depth, "Russian roulette from this many bounces on");
   app.add_option("--lights", selection, "how next-event estimation chooses a light: power or uniform");
   app.add_flag("--centre", centre, "sample every pixel at its centre (no anti-aliasing): the error against a "
@@ -101,6 +105,7 @@ ZRAKA_PATHTRACE_MAIN_FN int pathtrace_main_in(int argc, char** argv, const scene
     const std::string& scene_name = opt.scene;
     scene sc = load_scene_argument_in(scene_name, root, registry).sc;  // the course's kinds too
     opt.apply_to(sc.settings);
+    method = chosen_integrator(method, opt.given("--integrator"), sc, scene_name, registry);  // or the scene's
     const int W = opt.width, H = opt.height;
     for (std::string* f : {&pfm, &report, &json})
       if (!f->empty()) {  // checked before the render, so a failed run leaves no image behind
@@ -108,7 +113,8 @@ ZRAKA_PATHTRACE_MAIN_FN int pathtrace_main_in(int argc, char** argv, const scene
         check_output_name(*f);
       }
     path_options io;
-    io.method = parse_integrator(method);
+    const auto& make_integrator = find_integrator(method, registry);  // built in or the course's
+    if (builtin_integrators().integrator_type(method)) io.method = parse_integrator(method);
     io.max_depth = opt.depth;
     io.rr_depth = rr_depth;
     io.lights = parse_enum<light_selection>(selection, "--lights");
@@ -126,35 +132,45 @@ ZRAKA_PATHTRACE_MAIN_FN int pathtrace_main_in(int argc, char** argv, const scene
     }
 
     // [listing render]
-    const path_tracer tracer(sc, io);
+    // The integrator (integrator_door.hpp); a built-in is the path tracer, called directly.
+    const scene_registry::radiance_fn radiance = make_integrator(sc, io);
+    const path_tracer* const tracer = radiance.target<path_tracer>();
     const auto cam = sc.prepared_camera();
     const sampler_kind sampler = opt.sampler_choice();
-    auto sample = [&](sample_context& c) {
-      sample_point point(sampler, opt.seed, std::uint32_t(c.y) * std::uint32_t(W) + std::uint32_t(c.x),
-                         std::uint32_t(c.sample), std::uint32_t(c.spp));
-      point.drive(c.random);  // the sampler's numbers for this sample (independent: the stream's own)
-      const vec2 o = centre ? vec2(0.5) : pixel_sample(pixel_pattern::uniform, c.sample, c.spp, c.random);
-      return tracer(cam.generate((c.x + o.x) / W, (c.y + o.y) / H), c.random, c.rays);
-    };
     progressive_options po;
     po.max_spp = opt.spp;
     po.time_budget = budget;
     po.seed = opt.seed;
     po.render.threads = opt.threads;
-    convergence_log log("error of " + scene_name + " (" + name(io.method) + ") against " + reference,
+    convergence_log log("error of " + scene_name + " (" + method + ") against " + reference,
                         {"rmse", "relmse"}, "rmse", "spp");
     progressive_totals tot;
     preview_window preview(opt, W, H, ref ? &*ref : nullptr, "spp", root);  // --window: the passes as they finish
-    const image img = render_progressive(W, H, po, sample, [&](const image& mean, const progressive_totals& t) {
-      if (ref) log.add(std::uint64_t(t.spp), t.seconds, {rmse(mean, *ref), relmse(mean, *ref)});
-      return preview.show(mean, t.spp, t.seconds);  // false: stopped in the window
-    }, &tot);
+    auto render_with = [&](const auto& estimate) {  // estimate(camera ray, stream, rays) -> radiance
+      auto sample = [&](sample_context& c) {
+        sample_point point(sampler, opt.seed, std::uint32_t(c.y) * std::uint32_t(W) + std::uint32_t(c.x),
+                           std::uint32_t(c.sample), std::uint32_t(c.spp));
+        point.drive(c.random);  // the sampler's numbers for this sample (independent: the stream's own)
+        const vec2 o = centre ? vec2(0.5) : pixel_sample(pixel_pattern::uniform, c.sample, c.spp, c.random);
+        return estimate(cam.generate((c.x + o.x) / W, (c.y + o.y) / H), c.random, c.rays);
+      };
+      return render_progressive(W, H, po, sample, [&](const image& mean, const progressive_totals& t) {
+        if (ref) log.add(std::uint64_t(t.spp), t.seconds, {rmse(mean, *ref), relmse(mean, *ref)});
+        return preview.show(mean, t.spp, t.seconds);  // false: stopped in the window
+      }, &tot);
+    };
+    const image img = tracer ? render_with(*tracer) : render_with(radiance);
     // [end]
 
-    std::printf("scene %s, %dx%d; %s\n%s\n", scene_name.c_str(), W, H, describe_built(sc).c_str(),
-                tracer.lights.describe().c_str());
-    std::printf("integrator %s%s, at most %d bounces, Russian roulette from bounce %d\n", name(io.method),
-                io.method == integrator::mis ? " (power heuristic)" : "", io.max_depth, io.rr_depth);
+    if (tracer) {
+      std::printf("scene %s, %dx%d; %s\n%s\n", scene_name.c_str(), W, H, describe_built(sc).c_str(),
+                  tracer->lights.describe().c_str());
+      std::printf("integrator %s%s, at most %d bounces, Russian roulette from bounce %d\n", name(io.method),
+                  io.method == integrator::mis ? " (power heuristic)" : "", io.max_depth, io.rr_depth);
+    } else {
+      std::printf("scene %s, %dx%d; %s\n", scene_name.c_str(), W, H, describe_built(sc).c_str());
+      std::printf("integrator %s (the course's own), depth %d\n", method.c_str(), io.max_depth);
+    }
     std::printf("sampler %s\n", name(sampler));
     if (ref) {
       std::printf("%s", log.table().c_str());
@@ -188,10 +204,11 @@ ZRAKA_PATHTRACE_MAIN_FN int pathtrace_main_in(int argc, char** argv, const scene
     const double secs = std::max(tot.seconds, 1e-9);
     std::printf("summary: %s %s %dx%d, %d spp in %.2f s on %d thread%s: %.3f M samples/s, %.3f M rays/s, "
                 "%.2f rays/sample, %llu NaN/inf samples; total %.2f s; scene choices: %s\n",
-                scene_name.c_str(), name(io.method), W, H, tot.spp, tot.seconds, tot.stats.threads,
+                scene_name.c_str(), method.c_str(), W, H, tot.spp, tot.seconds, tot.stats.threads,
                 tot.stats.threads == 1 ? "" : "s", double(tot.stats.samples) / secs * 1e-6,
                 double(tot.stats.rays) / secs * 1e-6, double(tot.stats.rays) / double(std::max<std::uint64_t>(tot.stats.samples, 1)),
-                static_cast<unsigned long long>(tot.stats.nonfinite), clock.seconds(), tracer.choices().c_str());
+                static_cast<unsigned long long>(tot.stats.nonfinite), clock.seconds(),
+                tracer ? tracer->choices().c_str() : ("integrator " + method + ", the course's own").c_str());
     return 0;
   });
 }

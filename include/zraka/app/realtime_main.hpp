@@ -62,6 +62,7 @@
 #include <zraka/gpu/gpu_scene.hpp>
 #include <zraka/gpu/realtime.hpp>
 #include <zraka/image/image_io.hpp>
+#include <zraka/integrators/integrator_door.hpp>
 #include <zraka/io/scene_argument.hpp>
 #include <zraka/scene/named_scenes.hpp>
 #include <zraka/scene/scene_query.hpp>
@@ -218,6 +219,7 @@ ZRAKA_REALTIME_MAIN_FN int realtime_main_in(int argc, char** argv, const scene_r
 
   return guarded([&] {
     const stopwatch clock;
+    refuse_course_integrator(method, registry, "realtime", "the OpenCL kernel");  // before the scene and device
     // A scene file brings its own settings; the built-in scenes use this program's: 512x512,
     // depth 8, seed 1, and headless 8 frames' worth of samples.
     int spf = spf_opt.value_or(1);
@@ -230,6 +232,8 @@ ZRAKA_REALTIME_MAIN_FN int realtime_main_in(int argc, char** argv, const scene_r
       sc.settings.max_depth = 8, sc.settings.seed = 1, sc.settings.spp = 8 * spf;
     }
     opt.apply_to(sc.settings);  // the command line over the scene's settings, checked
+    method = chosen_integrator(method, opt.given("--integrator"), sc, opt.scene, registry);  // or the scene's
+    refuse_course_integrator(method, registry, "realtime", "the OpenCL kernel");
     const int width = opt.width, height = opt.height, depth = opt.depth;
     const std::uint64_t seed = opt.seed;
     const std::string& out = opt.out;

@@ -36,6 +36,7 @@
 #include <zraka/core/error.hpp>
 #include <zraka/core/stopwatch.hpp>
 #include <zraka/image/image_io.hpp>
+#include <zraka/integrators/integrator_door.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/integrators/whitted.hpp>
 #include <zraka/io/scene_argument.hpp>
@@ -72,6 +73,9 @@ ZRAKA_WHITTED_MAIN_FN int whitted_main_in(int argc, char** argv, const scene_reg
     loaded_scene ls = load_scene_argument_in(po.scene, root, registry);  // the course's kinds too
     scene& sc = ls.sc;
     po.apply_to(sc.settings);
+    // A scene file's settings.integrator is the path tracers'; a course's is refused by name.
+    refuse_course_integrator(chosen_integrator("", false, sc, po.scene, registry), registry, "whitted",
+                             "the Whitted ray tracer");
     render_options ro;
     ro.threads = po.threads;
     whitted_options opt;

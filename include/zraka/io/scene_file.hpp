@@ -347,7 +347,7 @@ class scene_reader {
   void settings(const YAML::Node& n) {
     render_settings& s = out_.sc.settings;
     if (n) {
-      keys(n, "settings", {"width", "height", "spp", "max_depth", "seed", "background", "ambient", "medium"});
+      keys(n, "settings", {"width", "height", "spp", "max_depth", "seed", "background", "ambient", "medium", "integrator"});
       if (n["medium"]) out_.sc.global_medium = medium_named(n["medium"], "settings.medium");
       const long long big = 1LL << 40;
       if (n["width"]) s.width = int(integer(n["width"], "settings.width", 1, image::max_side));
@@ -358,6 +358,8 @@ class scene_reader {
       if (n["seed"]) s.seed = std::uint64_t(integer(n["seed"], "settings.seed", 0, big));
       if (n["background"]) out_.sc.background = colour(n["background"], "settings.background");
       if (n["ambient"]) out_.sc.ambient = colour(n["ambient"], "settings.ambient");
+      // Looked up by the program that renders (integrators/integrator_door.hpp): its registry has the course's.
+      if (n["integrator"]) s.integrator = text(n["integrator"], "settings.integrator");
       try {
         image::check_size(s.width, s.height);
         check_render_size(s.width, s.height, s.spp);
@@ -373,6 +375,7 @@ class scene_reader {
     r["seed"] = s.seed;
     r["background"] = flow(out_.sc.background);
     r["ambient"] = flow(out_.sc.ambient);
+    if (!s.integrator.empty()) r["integrator"] = s.integrator;
     if (out_.sc.global_medium >= 0) r["medium"] = out_.sc.media[std::size_t(out_.sc.global_medium)].name;
   }
 

@@ -43,6 +43,7 @@ struct render_settings {
   int spp = 16;          // samples (primary rays) per pixel
   int max_depth = 8;     // bounces before a path stops (Whitted: depth of the ray tree)
   std::uint64_t seed = 1;
+  std::string integrator;  // a scene file's settings.integrator, by name (empty: the program's own)
 };
 
 enum class shape_kind { sphere, quad, plane, triangle, mesh, user };

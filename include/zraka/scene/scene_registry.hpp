@@ -24,10 +24,12 @@
 // own (a spot light: lights/custom_light.hpp) with the same call.
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/rng.hpp>
 #include <zraka/materials/material.hpp>
 #include <zraka/scene/scene.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <functional>
 #include <initializer_list>
 #include <map>
@@ -36,7 +38,8 @@
 
 namespace zraka {
 
-class scene_node;  // the reader a factory gets (scene_file.hpp)
+class scene_node;     // the reader a factory gets (scene_file.hpp)
+struct path_options;  // the path tracer's options, which an integrator's factory gets (path.hpp)
 
 // The types the scene format itself knows; a registered name must differ from all of them.
 inline const std::vector<std::string>& builtin_object_types() {
@@ -78,6 +81,17 @@ class scene_registry {
     return shapes_.empty() && materials_.size() == builtin_materials_.size() && course_lights_ == 0;
   }
 
+  // An integrator (the --integrator door, book 2.3 "A program of one's own"): what estimates the
+  // radiance of one camera sample, given the camera ray, the sample's own random stream and a
+  // counter of the rays it traces (render.hpp's sample_context). The factory makes it once per
+  // render, for the scene and the command line's path options (max_depth, rr_depth, lights).
+  // The built-ins naive, nee and mis come through this same call (integrators/integrator_door.hpp).
+  using radiance_fn = std::function<rgb(const ray&, rng&, std::uint64_t&)>;
+  using integrator_factory = std::function<radiance_fn(const zraka::scene&, const path_options&)>;
+  ZRAKA_COMPILED_FN void add_integrator(const std::string& name, integrator_factory make);
+  ZRAKA_COMPILED_FN const integrator_factory* integrator_type(const std::string& name) const;
+  const std::map<std::string, integrator_factory>& integrators() const { return integrators_; }
+
   // "sphere, plane, ... or bezier; registered: disk" for an unknown-type message.
   ZRAKA_COMPILED_FN std::string object_types() const;
   ZRAKA_COMPILED_FN std::string material_types() const;
@@ -101,6 +115,8 @@ class scene_registry {
                          const char* what, std::initializer_list<const char*> common,
                          const std::vector<std::string>& keys);
   template <class M> static std::string listing(const std::vector<std::string>& builtin, const M& registered);
+
+  std::map<std::string, integrator_factory> integrators_;  // the integrator door, built-ins apart
 };
 
 // The members are compiled once into zraka::compiled (compiled.hpp): the maps' code is then not
@@ -143,6 +159,14 @@ ZRAKA_COMPILED_FN const scene_registry::entry<scene_registry::material_factory>*
 ZRAKA_COMPILED_FN std::string scene_registry::object_types() const { return listing(builtin_object_types(), shapes_); }
 ZRAKA_COMPILED_FN std::string scene_registry::material_types() const {
   return listing(builtin_materials_, materials_);
+}
+ZRAKA_COMPILED_FN void scene_registry::add_integrator(const std::string& name, integrator_factory make) {
+  check_name(name, {}, integrators_, "integrator", {}, {});
+  if (!make) throw error("scene registry: the factory for integrator '" + name + "' is empty");
+  integrators_[name] = std::move(make);
+}
+ZRAKA_COMPILED_FN const scene_registry::integrator_factory* scene_registry::integrator_type(const std::string& name) const {
+  return find(integrators_, name);
 }
 
 template <class M> const typename M::mapped_type* scene_registry::find(const M& m, const std::string& type) {
