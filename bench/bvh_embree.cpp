@@ -6,12 +6,12 @@
 // Each timing is the best of --repeat passes, ours and Embree's alternating, in this thread's CPU
 // time (not wall-clock time), so that a machine busy with other work disturbs both alike and
 // little; builds are timed in wall-clock time (Embree may build in a thread of its own).
-#include <zraka/io/bpt.hpp>
+#include <zraka/accel/triangle_bvh.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/core/resources.hpp>
 #include <zraka/core/stopwatch.hpp>
 #include <zraka/geometry/tessellate.hpp>
-#include <zraka/accel/triangle_bvh.hpp>
+#include <zraka/io/bpt.hpp>
 
 #include "teapot_rays.hpp"
 

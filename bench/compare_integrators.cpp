@@ -7,18 +7,18 @@
 // integrator (build/out/compare-<scene>-<integrator>.csv, for tools/plot_convergence.py).
 //   build/bin/compare_integrators [--scenes a,b,c] [--width W --height H] [--target RMSE]
 //                                 [--max-seconds S] [--ref-spp N] [--threads T] [--seed S]
-#include <zraka/integrators/bdpt.hpp>
 #include <zraka/app/cli.hpp>
-#include <zraka/sampling/convergence.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/app/reference.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/stopwatch.hpp>
+#include <zraka/integrators/bdpt.hpp>
 #include <zraka/integrators/metropolis.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/progressive.hpp>
-#include <zraka/app/program_options.hpp>
-#include <zraka/app/reference.hpp>
-#include <zraka/io/scene_argument.hpp>
 #include <zraka/integrators/sppm.hpp>
-#include <zraka/core/stopwatch.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/sampling/convergence.hpp>
 
 #include <cmath>
 #include <cstdio>

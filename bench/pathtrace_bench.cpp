@@ -8,12 +8,12 @@
 //     sampled at their centres here, so the error is the light transport's alone (with jitter,
 //     the edges of the directly seen light add the same noise to every integrator).
 #include <zraka/app/cli.hpp>
-#include <zraka/scene/cornell.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/progressive.hpp>
+#include <zraka/scene/cornell.hpp>
 
 #include <zraka/app/cli.hpp>
 

@@ -6,14 +6,14 @@
 // Targets (issue 17): the specialised kernel >= 1.2x the all-features one, and >= 1.5x the CPU
 // on 2 threads. On PoCL, OpenCL runs on the same two cores as the CPU path tracer, so this
 // compares code, not hardware.
-#include <zraka/core/error.hpp>
-#include <zraka/gpu/gpu_scene.hpp>
-#include <zraka/integrators/path.hpp>
 #include <zraka/app/program_options.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/core/stopwatch.hpp>
+#include <zraka/gpu/gpu_scene.hpp>
 #include <zraka/gpu/realtime.hpp>
+#include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/io/scene_argument.hpp>
-#include <zraka/core/stopwatch.hpp>
 
 #include <algorithm>
 #include <ctime>

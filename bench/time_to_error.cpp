@@ -22,27 +22,27 @@
 //   build/bin/time_to_error [--scene S] [--target RMSE] [--max-seconds S] [--ref-spp N]
 //                           [--integrators mis,nee,bdpt,kernel] [--precisions double,float] [--rr-depth N]
 //                           [--mitsuba PYTHON|none] [--mitsuba-variants scalar_rgb,llvm_ad_rgb] [--threads T]
-#include <zraka/integrators/bdpt.hpp>
 #include <zraka/app/cli.hpp>
-#include <zraka/sampling/convergence.hpp>
+#include <zraka/app/program_options.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/io/mitsuba_export.hpp>
+#include <zraka/integrators/bdpt.hpp>
 #include <zraka/integrators/path.hpp>
-#include <zraka/sampling/pixel_sampling.hpp>
-#include <zraka/app/program_options.hpp>
 #include <zraka/integrators/progressive.hpp>
+#include <zraka/io/mitsuba_export.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
 #if defined(ZRAKA_TTE_OPENCL)
 #include <zraka/gpu/gpu_scene.hpp>
 #include <zraka/gpu/realtime.hpp>
 #endif
 #include <zraka/app/reference.hpp>
 #include <zraka/core/resources.hpp>
-#include <zraka/sampling/samplers.hpp>
-#include <zraka/io/scene_argument.hpp>
-#include <zraka/scene/scene_precision.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/sampling/samplers.hpp>
+#include <zraka/scene/scene_precision.hpp>
 
 #include <algorithm>
 #include <cerrno>

@@ -2,8 +2,8 @@
 // it accepts (at a small, fixed level: the level is the scene file's business).
 #include "fuzz_common.hpp"
 
-#include <zraka/io/bpt.hpp>
 #include <zraka/geometry/tessellate.hpp>
+#include <zraka/io/bpt.hpp>
 
 #include <sstream>
 

@@ -4,8 +4,8 @@
 // load them. Debian's pugixml is not instrumented: coverage guides the search through our reader.
 #include "fuzz_common.hpp"
 
-#include <zraka/io/mitsuba_xml.hpp>
 #include <zraka/core/resources.hpp>
+#include <zraka/io/mitsuba_xml.hpp>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -18,25 +18,25 @@
 
 // Everything pathtrace_main.hpp includes, first, so that the macros below reach its body only.
 #include <zraka/app/cli.hpp>
-#include <zraka/core/input_file.hpp>
-#include <zraka/core/stopwatch.hpp>
-#include <zraka/io/mitsuba_export.hpp>
-#include <zraka/scene/named_scenes.hpp>
-#include <zraka/scene/scene_registry.hpp>
-#include <zraka/sampling/convergence.hpp>
-#include <zraka/scene/cornell.hpp>
-#include <zraka/core/error.hpp>
-#include <zraka/image/image_error.hpp>
-#include <zraka/image/image_io.hpp>
-#include <zraka/scene/lights.hpp>
-#include <zraka/integrators/path.hpp>
-#include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/app/preview_window.hpp>
 #include <zraka/app/program_options.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/core/input_file.hpp>
+#include <zraka/core/stopwatch.hpp>
+#include <zraka/image/image_error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/integrators/path.hpp>
 #include <zraka/integrators/progressive.hpp>
-#include <zraka/sampling/samplers.hpp>
+#include <zraka/io/mitsuba_export.hpp>
 #include <zraka/io/scene_argument.hpp>
 #include <zraka/io/scene_file.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
+#include <zraka/sampling/samplers.hpp>
+#include <zraka/scene/cornell.hpp>
+#include <zraka/scene/lights.hpp>
+#include <zraka/scene/named_scenes.hpp>
+#include <zraka/scene/scene_registry.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -5,24 +5,24 @@
 #error "build src/compiled.cpp through the zraka_compiled target (it defines ZRAKA_COMPILED)"
 #endif
 #define ZRAKA_COMPILING
-#include <zraka/core/atomic_file.hpp>
+#include <zraka/accel/triangle_bvh.hpp>
 #include <zraka/app/cli.hpp>
-#include <zraka/sampling/convergence.hpp>
-#include <zraka/scene/default_scene.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/core/atomic_file.hpp>
+#include <zraka/core/input_file.hpp>
+#include <zraka/core/limits.hpp>
+#include <zraka/core/parallel.hpp>
 #include <zraka/image/image.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/core/input_file.hpp>
-#include <zraka/core/limits.hpp>
-#include <zraka/io/mitsuba_export.hpp>
-#include <zraka/scene/named_scenes.hpp>
-#include <zraka/io/obj_file.hpp>
-#include <zraka/app/program_options.hpp>
-#include <zraka/core/parallel.hpp>
 #include <zraka/integrators/progressive.hpp>
 #include <zraka/integrators/render.hpp>
+#include <zraka/io/mitsuba_export.hpp>
+#include <zraka/io/obj_file.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/scene/default_scene.hpp>
+#include <zraka/scene/named_scenes.hpp>
 #include <zraka/scene/scene_registry.hpp>
-#include <zraka/accel/triangle_bvh.hpp>
 #if defined(ZRAKA_COMPILED_MESH_FILE)  // built with assimp
 #include <zraka/io/mesh_file.hpp>
 #endif

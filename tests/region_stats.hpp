@@ -3,8 +3,8 @@
 // (test_bdpt.cpp, test_metropolis.cpp): an image is cut into R x R regions, each batch (one
 // seed) gives a mean per region and channel, and two estimators agree where their means differ
 // by at most k combined standard errors.
-#include <zraka/sampling/estimator.hpp>
 #include <zraka/image/image.hpp>
+#include <zraka/sampling/estimator.hpp>
 #include <zraka/scene/scene.hpp>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // Axis-aligned boxes and the robust slab test (book 1.4, used by the BVH of 5.2).
-#include <zraka/geometry/aabb.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/geometry/aabb.hpp>
 #include <zraka/geometry/triangle.hpp>
 
 #include <doctest/doctest.h>

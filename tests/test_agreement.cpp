@@ -4,9 +4,9 @@
 // pixel within 5 of its own standard errors (allowing 0.5 % of the pixel channels outside, for
 // the heavy tails of a few-sample estimate). The kernel's side of the same promise is in
 // tests/test_realtime.cpp.
+#include <zraka/geometry/tessellate.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
-#include <zraka/geometry/tessellate.hpp>
 
 #include <doctest/doctest.h>
 

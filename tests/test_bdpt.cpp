@@ -4,10 +4,10 @@
 // strategy alone, unweighted, converging to the same image of paths of one length; the
 // strategies' weighted images summing to the image; the same bits for 1 and 2 threads.
 #include <zraka/integrators/bdpt.hpp>
-#include <zraka/scene/cornell.hpp>
-#include <zraka/sampling/estimator.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/scene/cornell.hpp>
 
 #include <doctest/doctest.h>
 

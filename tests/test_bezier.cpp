@@ -1,6 +1,6 @@
 // Cubic Bezier curves: Bernstein sum vs de Casteljau, and the derivative (book 1.3, 1.4).
-#include <zraka/geometry/bezier.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/geometry/bezier.hpp>
 
 #include <doctest/doctest.h>
 

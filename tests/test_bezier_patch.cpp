@@ -1,9 +1,9 @@
 // Bicubic Bezier patches: layout, evaluation, the two derivative schemes, and the unit normal,
 // including the teapot's collapsed patches (book 1.3, 1.4; errata A3, B6, C8).
-#include <zraka/geometry/bezier_patch.hpp>
-#include <zraka/io/bpt.hpp>
 #include <zraka/core/resources.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/geometry/bezier_patch.hpp>
+#include <zraka/io/bpt.hpp>
 
 #include <doctest/doctest.h>
 

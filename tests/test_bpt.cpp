@@ -1,7 +1,7 @@
 // The .bpt patch loader: the teapot's facts (data README) and an error for each kind of bad file.
+#include <zraka/core/resources.hpp>
 #include <zraka/geometry/aabb.hpp>
 #include <zraka/io/bpt.hpp>
-#include <zraka/core/resources.hpp>
 
 #include <doctest/doctest.h>
 

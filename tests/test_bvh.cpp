@@ -4,15 +4,15 @@
 // rays from inside, rays along the axes, no primitives, one primitive, identical centroids,
 // a depth-provoking input, NaN rays and primitives, bad options; and the float builder's
 // vector binning against its plain pass.
-#include <zraka/io/bpt.hpp>
 #include <zraka/accel/bvh.hpp>
 #include <zraka/core/resources.hpp>
 #include <zraka/core/rng.hpp>
-#include <zraka/scene/scene.hpp>
-#include <zraka/scene/scene_query.hpp>
 #include <zraka/geometry/sphere.hpp>
 #include <zraka/geometry/tessellate.hpp>
 #include <zraka/geometry/triangle.hpp>
+#include <zraka/io/bpt.hpp>
+#include <zraka/scene/scene.hpp>
+#include <zraka/scene/scene_query.hpp>
 
 #include <doctest/doctest.h>
 

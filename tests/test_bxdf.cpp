@@ -3,9 +3,9 @@
 #include <doctest/doctest.h>
 
 #include <sstream>
-#include <zraka/materials/bxdf.hpp>
 #include <zraka/app/chi_square.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/materials/bxdf.hpp>
 
 using namespace zraka;
 

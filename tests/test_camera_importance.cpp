@@ -2,8 +2,8 @@
 // direction density integrate to one over the sphere, and a point projects back to the image
 // position whose camera ray passes through it.
 #include <zraka/cameras/camera_importance.hpp>
-#include <zraka/sampling/estimator.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/sampling/estimator.hpp>
 #include <zraka/sampling/sampling.hpp>
 
 #include <doctest/doctest.h>

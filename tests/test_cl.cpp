@@ -2,8 +2,8 @@
 // zraka/gpu/cl.hpp on the machine's OpenCL (PoCL here): the vector add against the CPU, the kernel
 // random numbers (kernels/rng.cl) bit for bit against rng.hpp, and build errors that name the
 // file and carry the compiler's log. With no OpenCL platform every case says so and passes.
-#include <zraka/gpu/cl.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/gpu/cl.hpp>
 
 #include <doctest/doctest.h>
 

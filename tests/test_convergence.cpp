@@ -1,7 +1,7 @@
 // convergence.hpp: the log-log slope fit, the table, the CSV round trip, and a real Monte Carlo
 // run whose error falls as 1/sqrt(N).
-#include <zraka/sampling/convergence.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/sampling/convergence.hpp>
 
 #include <doctest/doctest.h>
 

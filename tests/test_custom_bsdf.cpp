@@ -1,6 +1,6 @@
+#include <zraka/integrators/path.hpp>
 #include <zraka/materials/custom_bsdf.hpp>
 #include <zraka/materials/material.hpp>
-#include <zraka/integrators/path.hpp>
 
 #include <doctest/doctest.h>
 

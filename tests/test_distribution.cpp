@@ -2,8 +2,8 @@
 // pdf (chi-square), the pdf integrates to one, bins of weight zero are never sampled, and the
 // last bin is safe in float.
 #include <zraka/app/chi_square.hpp>
-#include <zraka/sampling/distribution.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/sampling/distribution.hpp>
 
 #include <doctest/doctest.h>
 

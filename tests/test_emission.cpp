@@ -3,9 +3,9 @@
 // sampler by chi-square, and the emitted power the samples estimate against the power the light
 // set chooses lights by.
 #include <zraka/app/chi_square.hpp>
+#include <zraka/geometry/tessellate.hpp>
 #include <zraka/sampling/estimator.hpp>
 #include <zraka/scene/lights.hpp>
-#include <zraka/geometry/tessellate.hpp>
 
 #include <doctest/doctest.h>
 

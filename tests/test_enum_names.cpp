@@ -1,9 +1,9 @@
 // enum_names.hpp: one table per enum gives name(e), parse_enum and the error that lists the
 // valid names; the library's enums and a program's own enum take part the same way.
 #include <zraka/core/enum_names.hpp>
+#include <zraka/geometry/triangle.hpp>
 #include <zraka/integrators/bdpt.hpp>
 #include <zraka/integrators/path.hpp>
-#include <zraka/geometry/triangle.hpp>
 #include <zraka/media/medium.hpp>
 #include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/sampling/samplers.hpp>

@@ -4,11 +4,11 @@
 // maps are refused by name; a Lambertian ball under a constant sky has radiance rho L (furnace)
 // with every method; naive, nee and mis agree under a non-uniform map; nee finds a tiny sun.
 #include <zraka/app/chi_square.hpp>
-#include <zraka/lights/environment_file.hpp>
 #include <zraka/gpu/gpu_scene.hpp>
 #include <zraka/integrators/path.hpp>
-#include <zraka/io/scene_file.hpp>
 #include <zraka/integrators/whitted.hpp>
+#include <zraka/io/scene_file.hpp>
+#include <zraka/lights/environment_file.hpp>
 
 #include <doctest/doctest.h>
 #if !ZRAKA_COMPILED_DEFINITIONS  // else image_io.hpp has stb_image_write, for writing .hdr files too

@@ -1,7 +1,7 @@
 // estimator.hpp: Welford's mean and variance on ill-conditioned data, merging for parallel
 // sums, the standard error and the coverage of the confidence interval.
-#include <zraka/sampling/estimator.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/sampling/estimator.hpp>
 
 #include <doctest/doctest.h>
 

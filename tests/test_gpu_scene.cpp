@@ -1,10 +1,10 @@
 // gpu_scene.hpp: a scene packed into the flat arrays the real-time kernel reads, the features it
 // uses and the -D switches made from them, and the CPU twin of one kernel sample. No OpenCL
 // here (tests/test_realtime.cpp runs the kernel).
-#include <zraka/scene/cornell.hpp>
 #include <zraka/gpu/gpu_scene.hpp>
-#include <zraka/media/medium.hpp>
 #include <zraka/gpu/realtime.hpp>
+#include <zraka/media/medium.hpp>
+#include <zraka/scene/cornell.hpp>
 
 #include <doctest/doctest.h>
 

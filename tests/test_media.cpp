@@ -1,6 +1,6 @@
-#include <zraka/sampling/estimator.hpp>
 #include <zraka/gpu/gpu_scene.hpp>
 #include <zraka/integrators/path.hpp>
+#include <zraka/sampling/estimator.hpp>
 
 #include <doctest/doctest.h>
 

@@ -2,8 +2,8 @@
 // Tests for mesh_file.hpp: the same sphere read from OBJ, PLY, glTF and GLB gives the same
 // triangles; glTF's texture orientation (the texel reached at a known point); every malformed
 // file in tests/scenes/bad/mesh gives its expected error; the limits; `material: from-file`.
-#include <zraka/io/mesh_file.hpp>
 #include <zraka/core/resources.hpp>
+#include <zraka/io/mesh_file.hpp>
 #include <zraka/io/scene_file.hpp>
 
 #include "expected_errors.hpp"

@@ -7,11 +7,11 @@
 // errors (batches with seeds of their own) on two Cornell boxes, its mean luminance is the
 // bootstrap's b, it gives the same bits for 1 and 2 threads, and it refuses a black scene and
 // bad options by name.
-#include <zraka/scene/cornell.hpp>
-#include <zraka/sampling/estimator.hpp>
-#include <zraka/integrators/metropolis.hpp>
-#include <zraka/sampling/pss.hpp>
 #include <zraka/app/reference.hpp>
+#include <zraka/integrators/metropolis.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/sampling/pss.hpp>
+#include <zraka/scene/cornell.hpp>
 
 #include <doctest/doctest.h>
 

@@ -7,14 +7,14 @@
 // albedo; no NaN at the extremes in float and double; the conductor Fresnel; scene files; the
 // renderers that cannot shade them refuse them by name.
 #include <zraka/app/chi_square.hpp>
+#include <zraka/core/onb.hpp>
+#include <zraka/core/rng.hpp>
 #include <zraka/gpu/gpu_scene.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/whitted.hpp>
+#include <zraka/io/scene_file.hpp>
 #include <zraka/materials/material.hpp>
 #include <zraka/materials/microfacet.hpp>
-#include <zraka/core/onb.hpp>
-#include <zraka/integrators/path.hpp>
-#include <zraka/core/rng.hpp>
-#include <zraka/io/scene_file.hpp>
-#include <zraka/integrators/whitted.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,8 +1,8 @@
 // Tests for obj_file.hpp: the OBJ forms (erratum C9), every malformed file in tests/scenes/bad/obj
 // gives the error its first line expects (file:line:column), the limits, and degenerate but
 // finite geometry stays legal.
-#include <zraka/io/obj_file.hpp>
 #include <zraka/core/resources.hpp>
+#include <zraka/io/obj_file.hpp>
 
 #include <doctest/doctest.h>
 

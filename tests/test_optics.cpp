@@ -8,8 +8,8 @@
 #include <sstream>
 #include <zraka/app/chi_square.hpp>
 #include <zraka/core/hit.hpp>
-#include <zraka/materials/optics.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/materials/optics.hpp>
 #include <zraka/sampling/sampling.hpp>
 
 using namespace zraka;

@@ -1,6 +1,6 @@
-#include <zraka/scene/cornell.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
+#include <zraka/scene/cornell.hpp>
 
 #include <doctest/doctest.h>
 

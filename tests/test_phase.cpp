@@ -1,6 +1,6 @@
 #include <zraka/app/chi_square.hpp>
-#include <zraka/media/phase.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/media/phase.hpp>
 
 #include <doctest/doctest.h>
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <sstream>
 #include <string>
-#include <zraka/geometry/plane.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/geometry/plane.hpp>
 #include <zraka/geometry/spawn.hpp>
 
 using namespace zraka;

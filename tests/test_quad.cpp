@@ -1,5 +1,5 @@
-#include <zraka/geometry/quad.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/geometry/quad.hpp>
 
 #include <doctest/doctest.h>
 

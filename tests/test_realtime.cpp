@@ -7,14 +7,14 @@
 // kernels; and the new functions (environment sampling, image lookups, microfacets) on extreme
 // inputs against the C++ they mirror, through small probe kernels.
 // Without an OpenCL platform every case says so and passes (nothing to test on this machine).
-#include <zraka/scene/cornell.hpp>
-#include <zraka/lights/environment.hpp>
-#include <zraka/gpu/gpu_scene.hpp>
-#include <zraka/image/image_io.hpp>
-#include <zraka/gpu/realtime.hpp>
-#include <zraka/integrators/render.hpp>
 #include <zraka/core/resources.hpp>
+#include <zraka/gpu/gpu_scene.hpp>
+#include <zraka/gpu/realtime.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/integrators/render.hpp>
 #include <zraka/io/scene_file.hpp>
+#include <zraka/lights/environment.hpp>
+#include <zraka/scene/cornell.hpp>
 
 #include <doctest/doctest.h>
 

@@ -1,8 +1,8 @@
 #include <zraka/app/chi_square.hpp>
-#include <zraka/scene/cornell.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/sampling/samplers.hpp>
+#include <zraka/scene/cornell.hpp>
 
 #include <doctest/doctest.h>
 

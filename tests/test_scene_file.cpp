@@ -4,8 +4,8 @@
 // relative to the scene, then the resource root; the object BVH and mesh BVHs give the same
 // nearest hit as testing everything; rays spawned from a mesh hit never hit it again.
 #include <zraka/io/scene_file.hpp>
-#include <zraka/scene/scene_query.hpp>
 #include <zraka/scene/lights.hpp>
+#include <zraka/scene/scene_query.hpp>
 
 #include <doctest/doctest.h>
 

@@ -2,13 +2,13 @@
 // scene_in<U>: a scene in another precision. The same objects, coordinates rounded once; the float
 // render of the Cornell box has the double render's expectation; a shape that rounding to float
 // destroys, a coordinate beyond float's range and a user shape are errors that name them.
-#include <zraka/sampling/estimator.hpp>
+#include <zraka/geometry/user_shape.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
-#include <zraka/scene/scene_query.hpp>
 #include <zraka/io/scene_argument.hpp>
+#include <zraka/sampling/estimator.hpp>
 #include <zraka/scene/scene_precision.hpp>
-#include <zraka/geometry/user_shape.hpp>
+#include <zraka/scene/scene_query.hpp>
 
 #include <doctest/doctest.h>
 

@@ -7,13 +7,13 @@
 // place, shadowing a built-in name); Whitted and the realtime packer refuse them by name.
 #include "../book/assignments/external/register.hpp"
 
-#include <zraka/sampling/estimator.hpp>
+#include <zraka/app/testing.hpp>
 #include <zraka/gpu/gpu_scene.hpp>
 #include <zraka/integrators/integrator_door.hpp>
 #include <zraka/integrators/path.hpp>
-#include <zraka/io/scene_file.hpp>
-#include <zraka/app/testing.hpp>
 #include <zraka/integrators/whitted.hpp>
+#include <zraka/io/scene_file.hpp>
+#include <zraka/sampling/estimator.hpp>
 
 #include <doctest/doctest.h>
 

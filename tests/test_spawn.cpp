@@ -1,8 +1,8 @@
 // Tests for spawn.hpp: the offset rule moves a ray origin off the surface by its error bound,
 // to the side the new direction points to, and rounds away so it cannot fall back.
 // (The full reintersection test over 1,000 spheres is in test_sphere.cpp.)
-#include <zraka/geometry/spawn.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/geometry/spawn.hpp>
 #include <zraka/geometry/sphere.hpp>
 
 #include <doctest/doctest.h>

@@ -9,9 +9,9 @@
 // Hit/miss is decided by the sign of r - |l| (l = centre-to-line offset). The computed |l| is
 // off by at most about 7 u S (f: 1 rounding, b = f.D: 3, (b/a) D: 2, f - (b/a)D: 1 more,
 // |.|: 3 relative to r), so outside the band |m_ref - r| > 16 u S the decision must be right.
-#include <zraka/geometry/sphere.hpp>
 #include <zraka/core/onb.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/geometry/sphere.hpp>
 
 #include <doctest/doctest.h>
 

@@ -3,13 +3,13 @@
 // lights' power; stored flux after one bounce against emitted x albedo in a closed box), SPPM
 // approaching the mis reference on the Cornell box, the caustic under the glass sphere,
 // determinism across thread counts, and bad options refused.
-#include <zraka/scene/cornell.hpp>
-#include <zraka/sampling/estimator.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/photon_mapping.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/integrators/sppm.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/scene/cornell.hpp>
 
 #include <doctest/doctest.h>
 

@@ -4,10 +4,10 @@
 // of radius 1e5, give the same image in float as in double (region means within 5 standard
 // errors of independent batches) and not a black one.
 #include <zraka/integrators/bdpt.hpp>
-#include <zraka/sampling/estimator.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/io/scene_argument.hpp>
+#include <zraka/sampling/estimator.hpp>
 #include <zraka/scene/scene_precision.hpp>
 
 #include <doctest/doctest.h>

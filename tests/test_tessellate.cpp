@@ -1,7 +1,7 @@
 // Tessellating the teapot: counts, normals from the patches, orientation, seams, bounding box.
-#include <zraka/io/bpt.hpp>
 #include <zraka/core/resources.hpp>
 #include <zraka/geometry/tessellate.hpp>
+#include <zraka/io/bpt.hpp>
 
 #include <doctest/doctest.h>
 

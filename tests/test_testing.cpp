@@ -2,9 +2,9 @@
 // pdf, a biased mean, a shifted image, a wrong derivative or normal, a shape that re-hits
 // itself), and its message names the measured numbers.
 #include <zraka/app/testing.hpp>
-#include <zraka/sampling/sampling.hpp>
 #include <zraka/geometry/sphere.hpp>
 #include <zraka/materials/microfacet.hpp>
+#include <zraka/sampling/sampling.hpp>
 
 #include <doctest/doctest.h>
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <tuple>
 #include <vector>
+#include <zraka/accel/simd.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/geometry/spawn.hpp>
-#include <zraka/accel/simd.hpp>
 #include <zraka/geometry/triangle.hpp>
 
 using namespace zraka;

@@ -4,11 +4,11 @@
 // force loop and triangle.hpp's intersect_watertight() over the input in index order. On
 // random soups, the teapot at several divs, axis-aligned rays, rays from inside, no triangles,
 // one triangle, identical centroids, degenerate triangles and NaN rays.
-#include <zraka/io/bpt.hpp>
+#include <zraka/accel/triangle_bvh.hpp>
 #include <zraka/core/resources.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/geometry/tessellate.hpp>
-#include <zraka/accel/triangle_bvh.hpp>
+#include <zraka/io/bpt.hpp>
 
 #include <doctest/doctest.h>
 

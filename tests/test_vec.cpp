@@ -1,6 +1,6 @@
 // Tests for vec.hpp: the vector helpers of book 1.0 (Def 1.0.4-1.0.6) and normalize_or_zero.
-#include <zraka/core/vec.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/core/vec.hpp>
 
 #include <doctest/doctest.h>
 

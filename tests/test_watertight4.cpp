@@ -3,8 +3,8 @@
 // and the lanes it leaves to the scalar test are those with an edge function rounded to 0. On
 // random triangles, integer grids with rays along the axes (edge functions exactly 0), slivers,
 // grazing rays, huge, tiny and far triangles, empty (NaN) lanes and non-finite rays.
-#include <zraka/core/rng.hpp>
 #include <zraka/accel/watertight4.hpp>
+#include <zraka/core/rng.hpp>
 
 #include <doctest/doctest.h>
 

@@ -3,9 +3,9 @@
 // the same bits on any number of threads; shadows from occluders at any distance; total
 // internal reflection inside glass and energy conservation of Fresnel splitting; a scene file
 // rendered end to end.
-#include <zraka/scene/default_scene.hpp>
-#include <zraka/io/scene_file.hpp>
 #include <zraka/integrators/whitted.hpp>
+#include <zraka/io/scene_file.hpp>
+#include <zraka/scene/default_scene.hpp>
 
 #include <doctest/doctest.h>
 

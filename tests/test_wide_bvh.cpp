@@ -5,13 +5,13 @@
 // flat boxes, rays with zero, tiny, infinite and NaN direction components; the scene's object
 // BVH over every kind of object; the depth limit; no allocation per ray.
 #include <zraka/accel/bvh.hpp>
+#include <zraka/accel/wide_bvh.hpp>
 #include <zraka/core/rng.hpp>
-#include <zraka/scene/scene.hpp>
-#include <zraka/scene/scene_query.hpp>
 #include <zraka/geometry/sphere.hpp>
 #include <zraka/geometry/triangle.hpp>
 #include <zraka/geometry/user_shape.hpp>
-#include <zraka/accel/wide_bvh.hpp>
+#include <zraka/scene/scene.hpp>
+#include <zraka/scene/scene_query.hpp>
 
 #include <doctest/doctest.h>
 

@@ -4,8 +4,8 @@
 // nothing ever hits.
 #include <zraka/core/error.hpp>
 #include <zraka/core/ray.hpp>
-#include <zraka/geometry/sphere.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/geometry/sphere.hpp>
 
 #include <zraka/app/cli.hpp>
 

@@ -5,9 +5,9 @@
 // projected disc covers, computed in closed form.
 #include <zraka/cameras/camera.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/image/image_io.hpp>
-#include <zraka/geometry/sphere.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/geometry/sphere.hpp>
+#include <zraka/image/image_io.hpp>
 
 #include <zraka/app/program_options.hpp>
 

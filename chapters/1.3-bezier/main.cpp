@@ -3,13 +3,13 @@
 // the clock (error against run time). Checks the derivative of Lemma 1.4.6 against the explicit
 // one and against central differences. Draws one curve with its control polygon into a PNG, and
 // samples a 4x4 patch into an OBJ mesh.
-#include <zraka/geometry/bezier.hpp>
-#include <zraka/geometry/bezier_patch.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/image/image_io.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/geometry/bezier.hpp>
+#include <zraka/geometry/bezier_patch.hpp>
 #include <zraka/geometry/tessellate.hpp>
+#include <zraka/image/image_io.hpp>
 
 #include <zraka/app/program_options.hpp>
 

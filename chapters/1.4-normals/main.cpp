@@ -4,14 +4,14 @@
 // normals, and ray-casts the mesh shaded by its normals (colour = 0.5 (n + 1)) on white.
 // Each patch gets a bounding box, and a ray tests a patch's triangles only when it hits the box:
 // a one-level preview of the BVH of book 5.2.
-#include <zraka/geometry/aabb.hpp>
-#include <zraka/io/bpt.hpp>
 #include <zraka/cameras/camera.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/image/image_io.hpp>
 #include <zraka/core/resources.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/geometry/aabb.hpp>
 #include <zraka/geometry/tessellate.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/io/bpt.hpp>
 
 #include <zraka/app/program_options.hpp>
 

@@ -5,11 +5,11 @@
 // of a triangle fan and a grid ("cracks"), and how long one test takes (compare.cpp).
 #include <zraka/cameras/camera.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/image/image_io.hpp>
+#include <zraka/core/stopwatch.hpp>
 #include <zraka/geometry/plane.hpp>
 #include <zraka/geometry/sphere.hpp>
-#include <zraka/core/stopwatch.hpp>
 #include <zraka/geometry/triangle.hpp>
+#include <zraka/image/image_io.hpp>
 
 #include <zraka/app/program_options.hpp>
 

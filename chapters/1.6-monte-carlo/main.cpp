@@ -9,12 +9,12 @@
 // For every estimator: a table of N = 2^k, seconds, estimate, |error|, standard error, the
 // fitted slope of log(error) against log(N) (expect -1/2), and a CSV file for
 // tools/plot_convergence.py.
-#include <zraka/sampling/convergence.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/sampling/estimator.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/core/stopwatch.hpp>
 #include <zraka/core/vec.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/sampling/estimator.hpp>
 
 #include <zraka/app/program_options.hpp>
 

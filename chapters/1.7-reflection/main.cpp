@@ -9,11 +9,11 @@
 // do not, for any fuzz: a larger offset blurs the reflection but stays centred on the mirror
 // direction.
 #include <zraka/core/error.hpp>
-#include <zraka/sampling/estimator.hpp>
 #include <zraka/image/image_io.hpp>
 #include <zraka/integrators/path.hpp>
-#include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/integrators/render.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
 
 #include <zraka/app/program_options.hpp>
 

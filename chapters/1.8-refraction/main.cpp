@@ -6,10 +6,10 @@
 // where each hit on the glass reflects with probability R and refracts otherwise.
 #include <zraka/core/error.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/materials/optics.hpp>
 #include <zraka/integrators/path.hpp>
-#include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/integrators/render.hpp>
+#include <zraka/materials/optics.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
 
 #include <zraka/app/program_options.hpp>
 

@@ -10,12 +10,12 @@
 //    less at grazing angles; the unnormalised lobe cos^p, which is what the local model's
 //    (V.R)^p amounts to, is 2 pi/(p+2) at normal incidence: above 1 for p < 4.3, far below for
 //    shiny surfaces.
-#include <zraka/materials/bxdf.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/sampling/estimator.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/integrators/render.hpp>
+#include <zraka/materials/bxdf.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/scene/scene_query.hpp>
 

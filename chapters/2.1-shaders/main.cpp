@@ -7,13 +7,13 @@
 // The program runs a shader over the image on all threads and again on one thread, checks that
 // the two images are the same bits (the shader depends on its pixel alone), and counts the
 // black pixels against the area the spheres cover on the image plane.
-#include <zraka/cameras/camera.hpp>
 #include <zraka/app/program_options.hpp>
+#include <zraka/cameras/camera.hpp>
 #include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/geometry/sphere.hpp>
 #include <zraka/image/image_io.hpp>
 #include <zraka/integrators/render.hpp>
-#include <zraka/geometry/sphere.hpp>
 
 #include <cstdio>
 #include <vector>

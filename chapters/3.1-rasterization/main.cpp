@@ -8,10 +8,10 @@
 // each such pixel has its centre exactly on a triangle edge, where the two methods use
 // different tie rules, then prints both times.
 #include <zraka/core/error.hpp>
-#include <zraka/image/image_io.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/core/stopwatch.hpp>
 #include <zraka/geometry/triangle.hpp>
+#include <zraka/image/image_io.hpp>
 
 #include <zraka/app/program_options.hpp>
 

@@ -7,9 +7,9 @@
 // points that a geometry shader (kernels/points.geom, the thesis's Listing 3.3) turns into lines.
 // Without a display: xvfb-run -a -s "-screen 0 1280x720x24" bin/opengl --frames 3 --screenshot t.png
 #include <zraka/core/error.hpp>
+#include <zraka/core/stopwatch.hpp>
 #include <zraka/gpu/gl.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/core/stopwatch.hpp>
 
 #include <zraka/app/cli.hpp>
 #include <zraka/app/program_options.hpp>  // output_file: a bare name from the checkout goes to build/out/

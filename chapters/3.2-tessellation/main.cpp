@@ -6,12 +6,12 @@
 // level, W wireframe, Esc quit. The GPU's triangle count (a GL_PRIMITIVES_GENERATED query) is
 // compared with the CPU tessellation of book 1.4 (tessellate.hpp) at the same level.
 // Without a display: xvfb-run -a -s "-screen 0 1280x720x24" bin/tessellation --frames 3 --screenshot t.png
-#include <zraka/io/bpt.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/gpu/gl.hpp>
-#include <zraka/image/image_io.hpp>
 #include <zraka/core/resources.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/gpu/gl.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/io/bpt.hpp>
 #if __has_include(<zraka/geometry/tessellate.hpp>)
 #include <zraka/geometry/tessellate.hpp>
 #define ZRAKA_HAVE_CPU_TESSELLATION 1

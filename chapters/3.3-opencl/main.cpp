@@ -3,9 +3,9 @@
 // the resource root), copy a and b to the device, run one work item per element, read c back
 // and check it against the same sum computed on the CPU. With no OpenCL platform on the
 // machine it says so and computes on the CPU only.
-#include <zraka/gpu/cl.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/gpu/cl.hpp>
 
 #include <zraka/app/cli.hpp>
 

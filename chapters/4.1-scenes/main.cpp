@@ -5,12 +5,12 @@
 //   scenes                                           the default scene
 //   scenes --scene scenes/box.yaml
 //   scenes --scene tests/scenes/bad/negative-radius.yaml   error: ...:4:37: objects[0].radius: ...
-#include <zraka/core/error.hpp>
 #include <zraka/app/program_options.hpp>
-#include <zraka/io/scene_argument.hpp>
-#include <zraka/scene/scene_query.hpp>
-#include <zraka/scene/lights.hpp>
+#include <zraka/core/error.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/scene/lights.hpp>
+#include <zraka/scene/scene_query.hpp>
 
 #include <cstdio>
 

@@ -11,13 +11,13 @@
 // then the light transport's alone. With jittered pixels the edges of the directly seen light
 // (radiance 17 next to 0.5) would add a noise no integrator can remove, the same for all three.
 #include <zraka/app/program_options.hpp>
-#include <zraka/sampling/convergence.hpp>
-#include <zraka/scene/cornell.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/progressive.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/scene/cornell.hpp>
 
 #include <zraka/app/cli.hpp>
 

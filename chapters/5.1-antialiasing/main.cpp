@@ -8,12 +8,12 @@
 // places the samples by a sampler's first pair of coordinates (--sampler, samplers.hpp; sobol by
 // default): the low-discrepancy points of the page's last section.
 // Writes <out>.png (crops for the book), <out>-reference.png and <out>-<pattern>.csv.
-#include <zraka/sampling/convergence.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/integrators/render.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/sampling/samplers.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/scene/scene_query.hpp>

@@ -7,13 +7,13 @@
 // check that the BVH's hits equal brute force's. Then the growth exponent of the cost per ray
 // against n, a sliver scene where the argument fails (errata C10), and a heat map of boxes tested
 // per pixel, --out (bvh-heat.png).
-#include <zraka/io/bpt.hpp>
+#include <zraka/accel/triangle_bvh.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/image/image_io.hpp>
 #include <zraka/core/resources.hpp>
 #include <zraka/core/stopwatch.hpp>
 #include <zraka/geometry/tessellate.hpp>
-#include <zraka/accel/triangle_bvh.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/io/bpt.hpp>
 
 #include "teapot_rays.hpp"
 

@@ -3,10 +3,10 @@
 // rays: camera rays (coherent: neighbours take nearly the same path through the tree),
 // incoherent rays (random origins in and around the model, uniformly random directions, like
 // the bounces of a path tracer) and incoherent rays from a bounding sphere through the box.
-#include <zraka/geometry/aabb.hpp>
 #include <zraka/cameras/camera.hpp>
-#include <zraka/geometry/mesh.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/geometry/aabb.hpp>
+#include <zraka/geometry/mesh.hpp>
 
 #include <cstdint>
 #include <vector>

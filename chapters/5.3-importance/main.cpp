@@ -12,15 +12,15 @@
 // position is fixed at the centre, so the only error is this integral's. Every strategy is
 // rendered at 1, 4, 16, 64 spp, timed, and compared with a stratified light-sampling reference
 // rendered in the same run (with another seed, so its noise is independent).
-#include <zraka/sampling/convergence.hpp>
 #include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/integrators/render.hpp>
-#include <zraka/scene/scene.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/scene/lights.hpp>
+#include <zraka/scene/scene.hpp>
 #include <zraka/scene/scene_query.hpp>
 
 #include <zraka/app/program_options.hpp>

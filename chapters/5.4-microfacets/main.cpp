@@ -7,16 +7,16 @@
 // is lost, as the single-scattering model counts only one bounce among them.
 //
 // Scenes (--scene): scenes/material-balls.yaml by default, or any scene (a name or a file).
-#include <zraka/sampling/convergence.hpp>
+#include <zraka/app/program_options.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/materials/material.hpp>
-#include <zraka/materials/microfacet.hpp>
 #include <zraka/integrators/path.hpp>
-#include <zraka/app/program_options.hpp>
 #include <zraka/integrators/progressive.hpp>
 #include <zraka/io/scene_argument.hpp>
+#include <zraka/materials/material.hpp>
+#include <zraka/materials/microfacet.hpp>
+#include <zraka/sampling/convergence.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -21,15 +21,15 @@
 //     seed (so its noise is independent). Here the noise of the light transport hides the bias
 //     at every step in these sample counts: the page says what that means.
 // --window shows each image of table 2 as it is rendered (preview_window.hpp).
+#include <zraka/app/preview_window.hpp>
+#include <zraka/app/program_options.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
 #include <zraka/integrators/path.hpp>
-#include <zraka/app/preview_window.hpp>
-#include <zraka/app/program_options.hpp>
 #include <zraka/integrators/render.hpp>
-#include <zraka/sampling/samplers.hpp>
 #include <zraka/io/scene_argument.hpp>
+#include <zraka/sampling/samplers.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -11,18 +11,18 @@
 // (row k = path length, column s = light vertices), so a student sees which strategy carries
 // which light.
 // --window shows bdpt | mis after each doubling of the samples (preview_window.hpp).
-#include <zraka/integrators/bdpt.hpp>
-#include <zraka/sampling/convergence.hpp>
-#include <zraka/core/error.hpp>
-#include <zraka/image/image_error.hpp>
-#include <zraka/image/image_io.hpp>
-#include <zraka/core/input_file.hpp>
-#include <zraka/integrators/path.hpp>
 #include <zraka/app/preview_window.hpp>
 #include <zraka/app/program_options.hpp>
 #include <zraka/app/reference.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/core/input_file.hpp>
+#include <zraka/image/image_error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/integrators/bdpt.hpp>
+#include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/io/scene_argument.hpp>
+#include <zraka/sampling/convergence.hpp>
 #include <zraka/scene/scene_query.hpp>
 
 #include <cmath>

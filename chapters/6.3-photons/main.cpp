@@ -10,21 +10,21 @@
 //   3. two-pass photon mapping (photon_mapping.hpp: global and caustic maps, final gathering)
 //      with a fixed radius: its error stops falling when its bias is reached.
 // --window shows the SPPM estimate of part 1 after every doubling of its passes (preview_window.hpp).
-#include <zraka/scene/cornell.hpp>
-#include <zraka/sampling/convergence.hpp>
+#include <zraka/app/preview_window.hpp>
+#include <zraka/app/program_options.hpp>
+#include <zraka/app/reference.hpp>  // render_mis: the path tracer of 2.3, as the part-6 references
 #include <zraka/core/error.hpp>
+#include <zraka/core/stopwatch.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/photon_mapping.hpp>
-#include <zraka/app/preview_window.hpp>
 #include <zraka/integrators/progressive.hpp>
-#include <zraka/app/program_options.hpp>
-#include <zraka/app/reference.hpp>  // render_mis: the path tracer of 2.3, as the part-6 references
 #include <zraka/integrators/render.hpp>
-#include <zraka/io/scene_argument.hpp>
 #include <zraka/integrators/sppm.hpp>
-#include <zraka/core/stopwatch.hpp>
+#include <zraka/io/scene_argument.hpp>
+#include <zraka/sampling/convergence.hpp>
+#include <zraka/scene/cornell.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -9,18 +9,18 @@
 // the reference's own noise out of the errors), then the bootstrap's normalisation and the
 // acceptance rates. From the largest run, relMSE x seconds is each method's cost.
 // --window shows mlt | bdpt | mis after each doubling (preview_window.hpp).
-#include <zraka/integrators/bdpt.hpp>
-#include <zraka/sampling/convergence.hpp>
-#include <zraka/core/error.hpp>
-#include <zraka/image/image_error.hpp>
-#include <zraka/image/image_io.hpp>
-#include <zraka/integrators/metropolis.hpp>
-#include <zraka/integrators/path.hpp>
 #include <zraka/app/preview_window.hpp>
 #include <zraka/app/program_options.hpp>
 #include <zraka/app/reference.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/image/image_error.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/integrators/bdpt.hpp>
+#include <zraka/integrators/metropolis.hpp>
+#include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/io/scene_argument.hpp>
+#include <zraka/sampling/convergence.hpp>
 #include <zraka/scene/scene_query.hpp>
 
 #include <cmath>

@@ -1,8 +1,8 @@
 // The compiled part from an installed zraka (zraka::compiled): the options struct and image
 // writing come from the library, the resource root from this program (the install prefix).
-#include <zraka/image/image_io.hpp>
 #include <zraka/app/program_options.hpp>
 #include <zraka/core/resources.hpp>
+#include <zraka/image/image_io.hpp>
 
 #include <cstdio>
 

@@ -2,9 +2,9 @@
 // student/reflect.hpp (must fail) and solution/reflect.hpp (must pass).
 #include "reflect.hpp"  // the student's file, by its bare name: CMake picks the folder
 
+#include <zraka/app/testing.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/sampling/sampling.hpp>
-#include <zraka/app/testing.hpp>
 
 #include <doctest/doctest.h>
 

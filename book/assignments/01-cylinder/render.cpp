@@ -4,8 +4,8 @@
 
 #include <zraka/app/cli.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/image/image_io.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/image/image_io.hpp>
 
 #include <cstdio>
 

@@ -3,8 +3,8 @@
 #include "cylinder.hpp"
 #include "render.hpp"
 
-#include <zraka/sampling/sampling.hpp>
 #include <zraka/app/testing.hpp>
+#include <zraka/sampling/sampling.hpp>
 
 #include <doctest/doctest.h>
 

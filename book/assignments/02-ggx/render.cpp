@@ -5,8 +5,8 @@
 
 #include <zraka/app/cli.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/image/image_io.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/image/image_io.hpp>
 
 #include <cstdio>
 

@@ -6,8 +6,8 @@
 // the two halves look alike, up to noise. Shared by render.cpp (target.png) and the test.
 #include "ggx.hpp"
 
-#include <zraka/image/image.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/image/image.hpp>
 
 #include <cmath>
 #include <vector>

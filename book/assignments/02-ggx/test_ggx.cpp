@@ -4,8 +4,8 @@
 #include "ggx.hpp"
 #include "render.hpp"
 
-#include <zraka/core/rng.hpp>
 #include <zraka/app/testing.hpp>
+#include <zraka/core/rng.hpp>
 
 #include <doctest/doctest.h>
 

@@ -4,12 +4,12 @@
 #include "oren_nayar.hpp"
 
 #include <zraka/app/cli.hpp>
-#include <zraka/scene/cornell.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/stopwatch.hpp>
 #include <zraka/image/image_io.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
-#include <zraka/core/stopwatch.hpp>
+#include <zraka/scene/cornell.hpp>
 
 #include <cstdio>
 #include <memory>

@@ -3,10 +3,10 @@
 // solution/oren_nayar.hpp (must pass).
 #include "oren_nayar.hpp"
 
+#include <zraka/app/testing.hpp>
+#include <zraka/core/rng.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/materials/material.hpp>
-#include <zraka/core/rng.hpp>
-#include <zraka/app/testing.hpp>
 
 #include <doctest/doctest.h>
 

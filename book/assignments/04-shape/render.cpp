@@ -5,11 +5,11 @@
 
 #include <zraka/app/cli.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/stopwatch.hpp>
 #include <zraka/image/image_io.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/scene/scene.hpp>
-#include <zraka/core/stopwatch.hpp>
 
 #include <cstdio>
 #include <memory>

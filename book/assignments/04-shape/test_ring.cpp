@@ -3,10 +3,10 @@
 // (must pass).
 #include "ring.hpp"
 
-#include <zraka/sampling/estimator.hpp>
-#include <zraka/integrators/path.hpp>
-#include <zraka/scene/scene.hpp>
 #include <zraka/app/testing.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/sampling/estimator.hpp>
+#include <zraka/scene/scene.hpp>
 
 #include <doctest/doctest.h>
 

@@ -10,8 +10,8 @@
 // Sampling: u.z chooses the lobe (diffuse with probability P_d, from kd and ks); the diffuse lobe
 // is cosine-weighted, the glossy one draws h from D (cos theta_h = u^(1/(s+1))) and mirrors wo
 // about it, so pdf(wi) = P_d cos_i / pi + (1 - P_d) D(h) / (4 wo.h).
-#include <zraka/materials/custom_bsdf.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/materials/custom_bsdf.hpp>
 #include <zraka/sampling/sampling.hpp>
 
 #include <algorithm>

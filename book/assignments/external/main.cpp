@@ -8,15 +8,15 @@
 #include "register.hpp"
 
 #include <zraka/app/chi_square.hpp>
+#include <zraka/app/testing.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/gpu/gpu_scene.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/io/mitsuba_xml.hpp>
 #include <zraka/integrators/path.hpp>
 #include <zraka/integrators/render.hpp>
-#include <zraka/sampling/sampling.hpp>
+#include <zraka/io/mitsuba_xml.hpp>
 #include <zraka/io/scene_file.hpp>
-#include <zraka/app/testing.hpp>
+#include <zraka/sampling/sampling.hpp>
 
 #include <cstdio>
 #include <string>

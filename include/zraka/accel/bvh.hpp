@@ -13,10 +13,10 @@
 // * Traversal: front to back (the child on the side the ray comes from first, by the sign of the
 //   ray's direction on the split axis) with a small fixed stack, no allocation; the any-hit
 //   variant for shadow rays stops at the first primitive that blocks.
-#include <zraka/geometry/aabb.hpp>
+#include <zraka/accel/simd.hpp>
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/accel/simd.hpp>
+#include <zraka/geometry/aabb.hpp>
 
 #include <algorithm>
 #include <array>

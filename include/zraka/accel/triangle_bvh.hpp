@@ -19,12 +19,12 @@
 // same float triangle; among hits at exactly the same t the lowest index wins, so the result
 // never depends on the tree.
 #include <zraka/accel/bvh.hpp>
-#include <zraka/core/compiled.hpp>
-#include <zraka/geometry/mesh.hpp>
 #include <zraka/accel/simd.hpp>
-#include <zraka/geometry/triangle.hpp>
 #include <zraka/accel/watertight4.hpp>
 #include <zraka/accel/wide_bvh.hpp>
+#include <zraka/core/compiled.hpp>
+#include <zraka/geometry/mesh.hpp>
+#include <zraka/geometry/triangle.hpp>
 
 #include <algorithm>
 #include <bit>

@@ -2,9 +2,9 @@
 // Collapsing bvh.hpp's binary tree into wide nodes (book 5.2) by the simple rule: a wide node's
 // slots are filled by opening the child with the largest box until N are used. The
 // dynamic-programming collapse by cost is wide_collapse_cost.hpp.
-#include <zraka/accel/wide_node.hpp>
 #include <zraka/accel/bvh.hpp>
 #include <zraka/accel/simd.hpp>
+#include <zraka/accel/wide_node.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/geometry/aabb.hpp>
 

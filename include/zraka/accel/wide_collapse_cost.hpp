@@ -1,10 +1,10 @@
 #pragma once
 // Collapsing bvh.hpp's binary tree into wide nodes chosen by cost (book 5.2, after Ylitie, Karras
 // and Laine 2017): the wide SAH minimised over the binary tree by dynamic programming.
-#include <zraka/accel/wide_collapse.hpp>
-#include <zraka/accel/wide_node.hpp>
 #include <zraka/accel/bvh.hpp>
 #include <zraka/accel/simd.hpp>
+#include <zraka/accel/wide_collapse.hpp>
+#include <zraka/accel/wide_node.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/geometry/aabb.hpp>
 

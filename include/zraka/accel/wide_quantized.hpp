@@ -1,9 +1,9 @@
 #pragma once
 // Quantized eight-wide nodes (book 5.2): each child's box as bytes against the node's origin, for
 // trees too large for the cache; half the bytes of wide_node<8>, walked by the same walks.
-#include <zraka/accel/wide_node.hpp>
 #include <zraka/accel/bvh.hpp>
 #include <zraka/accel/simd.hpp>
+#include <zraka/accel/wide_node.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/geometry/aabb.hpp>
 

@@ -11,10 +11,10 @@
 // a program that opens a preview links GLFW, and no chapter's unit reads the GL headers.
 // Header-only, this header includes gl.hpp and the program links glfw and epoxy (README.md's
 // table). A zraka built without them refuses --window by name.
-#include <zraka/core/compiled.hpp>
-#include <zraka/image/image.hpp>
 #include <zraka/app/program_options.hpp>
+#include <zraka/core/compiled.hpp>
 #include <zraka/core/resources.hpp>
+#include <zraka/image/image.hpp>
 
 #include <filesystem>
 #include <memory>
@@ -67,10 +67,10 @@ class preview_window {
 #if ZRAKA_PREVIEW_DEFINITIONS
 #if ZRAKA_PREVIEW_GL
 #include <zraka/core/error.hpp>
+#include <zraka/core/stopwatch.hpp>
 #include <zraka/gpu/gl.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/core/stopwatch.hpp>
 
 #include <stb/stb_easy_font.h>  // a tiny stroke font as axis-aligned quads (Debian's libstb-dev)
 

@@ -12,13 +12,13 @@
 // (.png, .ppm, .pfm, .exr); a bare file name run from inside the checkout lands in build/out/, never
 // loose in the repository (a name with a folder is taken as given); --scene is a name from named_scenes.hpp or a .yaml path; --help
 // shows every default; a bad value is "error: ..." and exit code 1.
-#include <zraka/core/atomic_file.hpp>
 #include <zraka/app/cli.hpp>
+#include <zraka/core/atomic_file.hpp>
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/resources.hpp>
 #include <zraka/image/image.hpp>
 #include <zraka/integrators/render.hpp>
-#include <zraka/core/resources.hpp>
 #include <zraka/sampling/samplers.hpp>
 
 #include <cstdint>

@@ -4,13 +4,13 @@
 // measures the reference's own noise, E|A - B|^2 = 4 MSE((A + B) / 2), which is taken out of every
 // error reported against it. The halves are kept as PFM files and read back by the next run with
 // the same scene file (its bytes' hash is in the name), size, depth and sample count.
+#include <zraka/app/program_options.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/input_file.hpp>
 #include <zraka/image/image.hpp>
 #include <zraka/image/image_error.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/core/input_file.hpp>
 #include <zraka/integrators/path.hpp>
-#include <zraka/app/program_options.hpp>
 #include <zraka/integrators/render.hpp>
 #include <zraka/io/scene_argument.hpp>
 

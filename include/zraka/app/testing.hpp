@@ -28,14 +28,14 @@
 //   all_of, across_scales                           several results (e.g. one per scale) as one
 // Header-only and independent of doctest. All randomness comes from rng.hpp with a fixed seed.
 #include <zraka/app/chi_square.hpp>
-#include <zraka/sampling/estimator.hpp>
 #include <zraka/core/hit.hpp>
-#include <zraka/image/image.hpp>
-#include <zraka/image/image_io.hpp>
 #include <zraka/core/input_file.hpp>
 #include <zraka/core/ray.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/geometry/spawn.hpp>
+#include <zraka/image/image.hpp>
+#include <zraka/image/image_io.hpp>
+#include <zraka/sampling/estimator.hpp>
 
 #include <algorithm>
 #include <cmath>

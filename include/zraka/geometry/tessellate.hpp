@@ -9,10 +9,10 @@
 // of P patches always gives P * divs^2 * 2 triangles, and patch k owns the triangles
 // [k * 2 divs^2, (k+1) * 2 divs^2) (chapter 1.4 bounds each patch with a box that way).
 #include <zraka/core/affine.hpp>
-#include <zraka/geometry/bezier_patch.hpp>
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/core/limits.hpp>
+#include <zraka/geometry/bezier_patch.hpp>
 #include <zraka/geometry/mesh.hpp>
 
 #include <string>

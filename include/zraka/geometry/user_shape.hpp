@@ -13,9 +13,9 @@
 // (t_min, t_max); hit_t::normal is the unit outward geometric normal, p_error bounds the error of
 // the hit point per component (spawn.hpp moves new rays off the surface by it), uv are surface
 // coordinates; call h.set_face(r.direction) last.
-#include <zraka/geometry/aabb.hpp>
 #include <zraka/core/hit.hpp>
 #include <zraka/core/ray.hpp>
+#include <zraka/geometry/aabb.hpp>
 
 #include <optional>
 #include <string>

@@ -13,9 +13,9 @@
 #include <GLFW/glfw3.h>
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/resources.hpp>
 #include <zraka/image/image.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/core/resources.hpp>
 
 #include <algorithm>
 #include <array>

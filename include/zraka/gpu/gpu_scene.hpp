@@ -29,15 +29,15 @@
 //
 // The features a scene uses become -D switches (build_options()), so the kernel compiled for a
 // scene of diffuse spheres has no triangle, BVH, glass or Phong code at all.
+#include <zraka/accel/triangle_bvh.hpp>
+#include <zraka/core/error.hpp>
+#include <zraka/integrators/path.hpp>
 #include <zraka/lights/environment.hpp>
 #include <zraka/lights/light.hpp>
-#include <zraka/core/error.hpp>
 #include <zraka/scene/lights.hpp>
-#include <zraka/textures/noise.hpp>
-#include <zraka/integrators/path.hpp>
 #include <zraka/scene/render_it_with.hpp>
 #include <zraka/scene/scene.hpp>
-#include <zraka/accel/triangle_bvh.hpp>
+#include <zraka/textures/noise.hpp>
 
 #include <array>
 #include <cstddef>

@@ -11,14 +11,14 @@
 // The chapter's in-code scenes are here too (realtime_scene()), so that the chapter, its test
 // and its benchmark render the same ones; they need no OpenCL.
 // Link with OpenCL::OpenCL (a test's first line: // links: OpenCL).
-#include <zraka/gpu/cl.hpp>
-#include <zraka/scene/named_scenes.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/stopwatch.hpp>
+#include <zraka/gpu/cl.hpp>
 #include <zraka/gpu/gpu_scene.hpp>
 #include <zraka/image/image.hpp>
 #include <zraka/image/image_io.hpp>
+#include <zraka/scene/named_scenes.hpp>
 #include <zraka/scene/scene.hpp>
-#include <zraka/core/stopwatch.hpp>
 
 #include <algorithm>
 #include <array>

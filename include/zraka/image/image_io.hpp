@@ -7,8 +7,8 @@
 // them, since a reference image with NaN would poison every comparison.
 #include <zraka/core/atomic_file.hpp>
 #include <zraka/core/compiled.hpp>
-#include <zraka/image/image.hpp>
 #include <zraka/core/input_file.hpp>
+#include <zraka/image/image.hpp>
 
 #include <algorithm>
 #include <array>

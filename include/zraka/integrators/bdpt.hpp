@@ -31,16 +31,16 @@
 #include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/core/parallel.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/core/stopwatch.hpp>
+#include <zraka/geometry/spawn.hpp>
 #include <zraka/image/image.hpp>
-#include <zraka/scene/lights.hpp>
-#include <zraka/materials/material.hpp>
 #include <zraka/integrators/path_kit.hpp>
 #include <zraka/integrators/render.hpp>
-#include <zraka/core/rng.hpp>
+#include <zraka/materials/material.hpp>
+#include <zraka/scene/lights.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/scene/scene_query.hpp>
-#include <zraka/geometry/spawn.hpp>
-#include <zraka/core/stopwatch.hpp>
 
 #include <atomic>
 #include <cstdint>

@@ -22,12 +22,12 @@
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/core/parallel.hpp>
-#include <zraka/image/image.hpp>
-#include <zraka/integrators/path.hpp>
-#include <zraka/sampling/pss.hpp>
-#include <zraka/integrators/render.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/image/image.hpp>
+#include <zraka/integrators/path.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/sampling/pss.hpp>
 
 #include <algorithm>
 #include <atomic>

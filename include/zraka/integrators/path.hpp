@@ -29,16 +29,16 @@
 // gpu_scene.hpp refuses them).
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/enum_names.hpp>
-#include <zraka/scene/lights.hpp>
-#include <zraka/materials/material.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/geometry/spawn.hpp>
 #include <zraka/integrators/next_event.hpp>
 #include <zraka/integrators/path_kit.hpp>
-#include <zraka/scene/media.hpp>
+#include <zraka/materials/material.hpp>
 #include <zraka/media/phase.hpp>
-#include <zraka/core/rng.hpp>
+#include <zraka/scene/lights.hpp>
+#include <zraka/scene/media.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/scene/scene_query.hpp>
-#include <zraka/geometry/spawn.hpp>
 
 #include <algorithm>
 #include <cstdint>

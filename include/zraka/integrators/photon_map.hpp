@@ -14,8 +14,8 @@
 // (N photons emitted, the photons' flux summed over a disc of area pi r^2 around x). The kernel is
 // 1/(pi r^2) inside the disc and 0 outside; its bias is the blur of the radiance over the disc.
 #include <zraka/core/error.hpp>
-#include <zraka/materials/material.hpp>
 #include <zraka/integrators/photons.hpp>
+#include <zraka/materials/material.hpp>
 
 #include <algorithm>
 #include <cmath>

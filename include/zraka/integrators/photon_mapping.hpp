@@ -12,12 +12,12 @@
 //                of everything y reflects (L (S|D)* D y, then D x).
 // Emission found by the gathering ray is skipped (direct light and caustics counted it).
 #include <zraka/core/compiled.hpp>
-#include <zraka/scene/lights.hpp>
-#include <zraka/materials/material.hpp>
+#include <zraka/core/rng.hpp>
 #include <zraka/integrators/next_event.hpp>
 #include <zraka/integrators/photon_map.hpp>
 #include <zraka/integrators/photons.hpp>
-#include <zraka/core/rng.hpp>
+#include <zraka/materials/material.hpp>
+#include <zraka/scene/lights.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/scene/scene_query.hpp>
 

@@ -16,14 +16,14 @@
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/core/parallel.hpp>
-#include <zraka/scene/lights.hpp>
-#include <zraka/materials/material.hpp>
+#include <zraka/core/rng.hpp>
+#include <zraka/geometry/spawn.hpp>
 #include <zraka/integrators/path_kit.hpp>
 #include <zraka/integrators/render.hpp>
-#include <zraka/core/rng.hpp>
+#include <zraka/materials/material.hpp>
+#include <zraka/scene/lights.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/scene/scene_query.hpp>
-#include <zraka/geometry/spawn.hpp>
 
 #include <algorithm>
 #include <cstdint>

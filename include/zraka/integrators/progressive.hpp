@@ -8,13 +8,13 @@
 // image after N spp holds the same samples as a single render of N spp (equal up to float
 // rounding of the running sums), for any number of threads.
 #include <zraka/core/compiled.hpp>
-#include <zraka/sampling/convergence.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/core/function_ref.hpp>
-#include <zraka/image/image.hpp>
-#include <zraka/integrators/render.hpp>
 #include <zraka/core/rng.hpp>
 #include <zraka/core/stopwatch.hpp>
+#include <zraka/image/image.hpp>
+#include <zraka/integrators/render.hpp>
+#include <zraka/sampling/convergence.hpp>
 
 #include <cmath>
 #include <cstdint>

@@ -19,10 +19,10 @@
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image.hpp>
-#include <zraka/scene/lights.hpp>
 #include <zraka/integrators/photon_map.hpp>
 #include <zraka/integrators/photon_mapping.hpp>
 #include <zraka/integrators/photons.hpp>
+#include <zraka/scene/lights.hpp>
 
 #include <algorithm>
 #include <cmath>

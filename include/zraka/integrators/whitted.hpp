@@ -17,18 +17,18 @@
 // each sample takes one random point per light (soft shadows; spp > 1 averages them). Whitted
 // tracing has no diffuse inter-reflection (erratum C2): light that bounces off a wall onto
 // another wall is left out, which is what `ambient` crudely stands in for.
+#include <zraka/core/rng.hpp>
+#include <zraka/geometry/spawn.hpp>
+#include <zraka/image/image.hpp>
+#include <zraka/integrators/render.hpp>
 #include <zraka/materials/bxdf.hpp>
 #include <zraka/materials/material.hpp>
-#include <zraka/image/image.hpp>
-#include <zraka/scene/lights.hpp>
 #include <zraka/materials/optics.hpp>
 #include <zraka/sampling/pixel_sampling.hpp>
-#include <zraka/integrators/render.hpp>
-#include <zraka/core/rng.hpp>
+#include <zraka/scene/lights.hpp>
 #include <zraka/scene/render_it_with.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/scene/scene_query.hpp>
-#include <zraka/geometry/spawn.hpp>
 
 #include <cstdint>
 #include <optional>

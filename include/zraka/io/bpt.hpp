@@ -5,11 +5,11 @@
 //   next V lines:  x y z                the control points; index 1 is the first
 // Blank lines are skipped. Every error names the file and the line: a silently misread patch
 // table shows up much later as a torn teapot.
-#include <zraka/geometry/bezier_patch.hpp>
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/core/input_file.hpp>
 #include <zraka/core/limits.hpp>
+#include <zraka/geometry/bezier_patch.hpp>
 
 #include <algorithm>
 #include <charconv>

@@ -24,10 +24,10 @@
 // as scene_file.hpp's ZRAKA_COMPILED_SCENE_FILE): then this header only declares. Header-only,
 // it includes assimp's headers and the program links assimp (README.md's table).
 #include <zraka/core/error.hpp>
-#include <zraka/image/image.hpp>
 #include <zraka/core/input_file.hpp>
 #include <zraka/core/limits.hpp>
 #include <zraka/geometry/mesh.hpp>
+#include <zraka/image/image.hpp>
 #include <zraka/io/obj_file.hpp>
 #include <zraka/textures/texture.hpp>
 #include <zraka/textures/texture_file.hpp>

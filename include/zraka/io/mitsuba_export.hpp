@@ -12,9 +12,9 @@
 // but a lambertian quad (a sphere's or a triangle's (u, v) is not Mitsuba's), a kind it does not
 // know. The converter refuses more (checker, fuzzy metal, phong): see tools/mitsuba_reference.py.
 #include <zraka/core/compiled.hpp>
-#include <zraka/lights/environment.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image.hpp>
+#include <zraka/lights/environment.hpp>
 #include <zraka/materials/material.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/textures/texture.hpp>

@@ -5,11 +5,11 @@
 // course's program passes its registry (scene_registry.hpp), and its files may then name its own
 // shapes and materials. Needs yaml-cpp (scene_file.hpp) and, for .xml, pugixml.
 #include <zraka/core/error.hpp>
-#include <zraka/io/mitsuba_xml.hpp>
-#include <zraka/scene/scene_registry.hpp>
-#include <zraka/scene/named_scenes.hpp>
 #include <zraka/core/resources.hpp>
+#include <zraka/io/mitsuba_xml.hpp>
 #include <zraka/io/scene_file.hpp>
+#include <zraka/scene/named_scenes.hpp>
+#include <zraka/scene/scene_registry.hpp>
 
 #include <filesystem>
 #include <string>

@@ -20,16 +20,16 @@
 // (scene_registry.hpp) passed to parse_scene / load_scene_file, with the same checks (scene_node).
 // Needs yaml-cpp (link yaml-cpp).
 #include <zraka/core/affine.hpp>
-#include <zraka/io/bpt.hpp>
-#include <zraka/lights/environment_file.hpp>
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/image/image.hpp>
-#include <zraka/textures/texture_file.hpp>
 #include <zraka/core/input_file.hpp>
 #include <zraka/core/limits.hpp>
-#include <zraka/io/obj_file.hpp>
 #include <zraka/core/resources.hpp>
+#include <zraka/image/image.hpp>
+#include <zraka/io/bpt.hpp>
+#include <zraka/io/obj_file.hpp>
+#include <zraka/lights/environment_file.hpp>
+#include <zraka/textures/texture_file.hpp>
 // PLY and glTF meshes (mesh_file.hpp) where zraka::compiled was built with assimp, or header-only
 // with ZRAKA_WITH_ASSIMP (the program then links assimp); otherwise a mesh is OBJ only.
 #if defined(ZRAKA_COMPILED_MESH_FILE) || defined(ZRAKA_WITH_ASSIMP)
@@ -38,11 +38,11 @@
 #else
 #define ZRAKA_SCENE_MESH_FILES 0
 #endif
-#include <zraka/scene/scene.hpp>
-#include <zraka/materials/builtin.hpp>
-#include <zraka/lights/builtin.hpp>
-#include <zraka/scene/scene_registry.hpp>
 #include <zraka/geometry/tessellate.hpp>
+#include <zraka/lights/builtin.hpp>
+#include <zraka/materials/builtin.hpp>
+#include <zraka/scene/scene.hpp>
+#include <zraka/scene/scene_registry.hpp>
 
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>

@@ -16,9 +16,9 @@
 //     p(omega) = p(u, v) / (2 pi^2 sin theta),
 // 0 exactly at the poles (sin theta = 0), which are never produced. A constant sky is sampled
 // uniformly over the sphere, p = 1/(4 pi).
-#include <zraka/sampling/distribution.hpp>
 #include <zraka/core/error.hpp>
 #include <zraka/image/image.hpp>
+#include <zraka/sampling/distribution.hpp>
 #include <zraka/sampling/sampling.hpp>
 
 #include <cmath>

@@ -5,10 +5,10 @@
 //   .pfm  portable float map (image_io.hpp).
 // The bytes come through read_input_file (input_file.hpp: a regular file within the size
 // limit); the image size is checked before decoding; every error names the file.
-#include <zraka/lights/environment.hpp>
-#include <zraka/image/image_io.hpp>
 #include <zraka/core/input_file.hpp>
+#include <zraka/image/image_io.hpp>
 #include <zraka/image/stb_decode.hpp>
+#include <zraka/lights/environment.hpp>
 
 #include <filesystem>
 #include <string>

@@ -6,8 +6,8 @@
 // environment (scene/lights.hpp, which also sets the choice of the light).
 #include <zraka/core/hit.hpp>
 #include <zraka/core/vec.hpp>
-#include <zraka/image/image.hpp>  // rgb
 #include <zraka/geometry/spawn.hpp>
+#include <zraka/image/image.hpp>  // rgb
 
 #include <optional>
 

@@ -24,10 +24,10 @@
 // Numerics: Lambda is written without the cancellation of (sqrt(1 + t) - 1)/2 at small t
 // (alpha 1e-3 makes t ~ 1e-6, where float would return 0 or noise); grazing directions
 // (wz -> 0) give Lambda = inf and G1 = 0, never NaN.
+#include <zraka/core/vec.hpp>
 #include <zraka/image/image.hpp>
 #include <zraka/materials/optics.hpp>
 #include <zraka/sampling/sampling.hpp>
-#include <zraka/core/vec.hpp>
 
 #include <algorithm>
 #include <array>

@@ -28,13 +28,13 @@
 // as pbrt and Mitsuba do): the density of t is the mean over channels of sigma_t,c T_r,c(t),
 // the probability of passing the mean of T_r,c(t_max). We choose uniformly rather than by the
 // path throughput so that the weights depend on the medium alone.
-#include <zraka/geometry/aabb.hpp>
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/image/image.hpp>
 #include <zraka/core/ray.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/geometry/aabb.hpp>
+#include <zraka/image/image.hpp>
 
 #include <algorithm>
 #include <cmath>

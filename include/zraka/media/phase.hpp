@@ -9,8 +9,8 @@
 //   Henyey-Greenstein   p = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos theta)^(3/2)), g in (-1, 1) the
 //                       mean cosine: g > 0 forward (fog, milk), g < 0 backward, g = 0 isotropic.
 #include <zraka/core/onb.hpp>
-#include <zraka/sampling/sampling.hpp>
 #include <zraka/core/vec.hpp>
+#include <zraka/sampling/sampling.hpp>
 
 #include <cmath>
 

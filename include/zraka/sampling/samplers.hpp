@@ -24,8 +24,8 @@
 // own hash (rng.hpp), still correct, only no longer low-discrepancy.
 #include <zraka/core/enum_names.hpp>
 #include <zraka/core/error.hpp>
-#include <zraka/sampling/pixel_sampling.hpp>
 #include <zraka/core/rng.hpp>
+#include <zraka/sampling/pixel_sampling.hpp>
 
 #include <array>
 #include <cstdint>

@@ -5,8 +5,8 @@
 // same scene as a file; a test renders both and finds the same image, bit for bit.
 #include <zraka/core/affine.hpp>
 #include <zraka/core/compiled.hpp>
-#include <zraka/materials/material.hpp>
 #include <zraka/geometry/mesh.hpp>
+#include <zraka/materials/material.hpp>
 #include <zraka/scene/scene.hpp>
 
 #include <array>

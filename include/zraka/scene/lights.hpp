@@ -26,11 +26,11 @@
 // choosing by power buys).
 #include <zraka/core/compiled.hpp>
 #include <zraka/core/enum_names.hpp>
+#include <zraka/geometry/spawn.hpp>
 #include <zraka/lights/light.hpp>
 #include <zraka/lights/light_sample.hpp>
 #include <zraka/sampling/sampling.hpp>
 #include <zraka/scene/scene.hpp>
-#include <zraka/geometry/spawn.hpp>
 
 #include <algorithm>
 #include <array>

@@ -10,10 +10,10 @@
 // change it (a glass sphere in fog is full of fog unless it names a medium). Shapes with media
 // do not nest: the outside of each is the global medium.
 #include <zraka/core/compiled.hpp>
+#include <zraka/geometry/spawn.hpp>
 #include <zraka/media/medium.hpp>
 #include <zraka/scene/scene.hpp>
 #include <zraka/scene/scene_query.hpp>
-#include <zraka/geometry/spawn.hpp>
 
 #include <cstdint>
 #include <string>

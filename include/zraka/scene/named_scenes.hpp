@@ -5,9 +5,9 @@
 // scene_argument.hpp, which loads either. This header needs no YAML library, so the real-time
 // chapter, its tests and its benchmark use it as they are.
 #include <zraka/core/compiled.hpp>
+#include <zraka/core/error.hpp>
 #include <zraka/scene/cornell.hpp>
 #include <zraka/scene/default_scene.hpp>
-#include <zraka/core/error.hpp>
 #include <zraka/scene/scene.hpp>
 
 #include <array>

@@ -13,22 +13,22 @@
 // them to pay: bvh.hpp's binary tree, collapsed to wide_bvh.hpp's four-wide nodes, which
 // nearest_hit() and occluded() walk; planes are infinite and are always tested.
 #include <zraka/accel/bvh.hpp>
+#include <zraka/accel/triangle_bvh.hpp>
+#include <zraka/accel/wide_bvh.hpp>
 #include <zraka/cameras/camera.hpp>
 #include <zraka/core/compiled.hpp>
-#include <zraka/lights/environment.hpp>
-#include <zraka/lights/light.hpp>
-#include <zraka/materials/material.hpp>
-#include <zraka/media/medium.hpp>
+#include <zraka/core/stopwatch.hpp>
 #include <zraka/geometry/mesh.hpp>
 #include <zraka/geometry/plane.hpp>
 #include <zraka/geometry/quad.hpp>
 #include <zraka/geometry/spawn.hpp>
 #include <zraka/geometry/sphere.hpp>
-#include <zraka/core/stopwatch.hpp>
 #include <zraka/geometry/triangle.hpp>
-#include <zraka/accel/triangle_bvh.hpp>
 #include <zraka/geometry/user_shape.hpp>
-#include <zraka/accel/wide_bvh.hpp>
+#include <zraka/lights/environment.hpp>
+#include <zraka/lights/light.hpp>
+#include <zraka/materials/material.hpp>
+#include <zraka/media/medium.hpp>
 
 #include <cstdint>
 #include <memory>

@@ -5,8 +5,8 @@
 // never know which of the two happened.
 #include <zraka/accel/wide_bvh.hpp>
 #include <zraka/core/compiled.hpp>
-#include <zraka/scene/scene.hpp>
 #include <zraka/geometry/spawn.hpp>
+#include <zraka/scene/scene.hpp>
 
 #include <algorithm>
 #include <cstdint>

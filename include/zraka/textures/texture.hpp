@@ -3,9 +3,9 @@
 // (book 1.8's floor) or in the hit's surface coordinates uv (Mitsuba's checkerboard); an image,
 // looked up by uv; or procedural noise and marble (noise.hpp), functions of the point in space.
 #include <zraka/core/compiled.hpp>
+#include <zraka/core/vec.hpp>
 #include <zraka/image/image.hpp>
 #include <zraka/textures/noise.hpp>
-#include <zraka/core/vec.hpp>
 
 #include <algorithm>
 #include <cmath>

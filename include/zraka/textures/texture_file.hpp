@@ -6,12 +6,12 @@
 // An albedo above 1 would create energy, so every texel must lie in [0, 1]; every error names
 // the file (and the texel). The bytes come through read_input_file (a regular file within the
 // size limit), and the image size is checked before decoding.
-#include <zraka/lights/environment_file.hpp>
 #include <zraka/core/error.hpp>
+#include <zraka/core/input_file.hpp>
 #include <zraka/image/image.hpp>
 #include <zraka/image/image_io.hpp>
-#include <zraka/core/input_file.hpp>
 #include <zraka/image/stb_decode.hpp>
+#include <zraka/lights/environment_file.hpp>
 
 #include <filesystem>
 #include <string>

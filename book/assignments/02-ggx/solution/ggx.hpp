@@ -8,8 +8,8 @@
 // Numerics: at alpha = 1e-4 the lobe is 1e-4 radians wide, and cos theta there is 1 - 5e-9,
 // which float cannot tell from 1. So sin^2 theta comes from x^2 + y^2 (never from 1 - cos^2),
 // and cos, sin come from tan theta as 1/sqrt(1 + tan^2), tan/sqrt(1 + tan^2).
-#include <zraka/sampling/sampling.hpp>
 #include <zraka/core/vec.hpp>
+#include <zraka/sampling/sampling.hpp>
 
 namespace course {
 

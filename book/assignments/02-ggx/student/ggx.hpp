@@ -2,8 +2,8 @@
 // Assignment 02: sample microfacet normals from the GGX (Trowbridge-Reitz) distribution, in the
 // local frame where +z is the macro-surface normal. Fill in D(), sample() and pdf(); see
 // book/assignments/02-ggx/README.md. Keep the names and signatures: the tests call them.
-#include <zraka/sampling/sampling.hpp>
 #include <zraka/core/vec.hpp>
+#include <zraka/sampling/sampling.hpp>
 
 namespace course {
 

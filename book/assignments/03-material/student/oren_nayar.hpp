@@ -6,8 +6,8 @@
 //   A = 1 - sigma^2 / (2 (sigma^2 + 0.33)),  B = 0.45 sigma^2 / (sigma^2 + 0.09)
 //   alpha = max(theta_i, theta_o),  beta = min(theta_i, theta_o)
 // sigma is the standard deviation of the facet slopes in radians; sigma = 0 is Lambert.
-#include <zraka/materials/custom_bsdf.hpp>
 #include <zraka/core/onb.hpp>
+#include <zraka/materials/custom_bsdf.hpp>
 #include <zraka/sampling/sampling.hpp>
 
 #include <algorithm>

@@ -5,9 +5,9 @@
 #include <zraka/core/hit.hpp>
 #include <zraka/core/onb.hpp>
 #include <zraka/core/ray.hpp>
-#include <zraka/sampling/sampling.hpp>
 #include <zraka/geometry/spawn.hpp>
 #include <zraka/geometry/user_shape.hpp>
+#include <zraka/sampling/sampling.hpp>
 
 #include <cmath>
 #include <optional>
