@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The library's floors (README.md, "The library's floors"): a header of include/zraka/ includes only
-headers of its own folder or of a folder on a lower floor, and no headers include each other in a
-cycle. The floors are read from the README's table, the one place they are written.
+headers of its own folder or of a folder on a lower floor, no headers include each other in a
+cycle, and every folder's README.md names each of its headers. The floors are read from the README's table, the one place they are written.
 
   python3 tools/include_floors.py [--root DIR] [--self-test]
 
@@ -42,6 +42,12 @@ def check(root):
             if dfolder != folder and floors.get(dfolder, 99) >= floors[folder]:
                 problems.append(f'include/zraka/{rel} (floor {floors[folder]}, {folder}/) includes <zraka/{dep}> '
                                 f'(floor {floors.get(dfolder, "?")}, {dfolder}/), which is not below it')
+    for d in sorted(p for p in inc.iterdir() if p.is_dir()):
+        readme = d / 'README.md'
+        text = readme.read_text() if readme.is_file() else ''
+        for h in sorted(d.glob('*.hpp')):
+            if f'`{h.name}`' not in text:
+                problems.append(f'include/zraka/{d.name}/README.md does not name {h.name}')
     # Cycles among headers (also inside one folder), by depth-first search.
     state, stack = {}, []
 
@@ -67,6 +73,8 @@ def self_test():
     with tempfile.TemporaryDirectory() as t:
         r = Path(t)
         (r / 'README.md').write_text('| 1 | `core/` | x |\n| 2 | `scene/` | y |\n')
+        (r / 'include' / 'zraka' / 'core').mkdir(parents=True)
+        (r / 'include' / 'zraka' / 'core' / 'README.md').write_text('| `a.hpp` |\n')
         files = {'core/a.hpp': '#include <zraka/scene/b.hpp>\n', 'scene/b.hpp': '#include <zraka/scene/c.hpp>\n',
                  'scene/c.hpp': '#include <zraka/scene/b.hpp>\n#include <zraka/core/none.hpp>\n',
                  'other/d.hpp': ''}
@@ -77,7 +85,8 @@ def self_test():
         want = ['include/zraka/core/a.hpp (floor 1, core/) includes <zraka/scene/b.hpp>',
                 'include cycle: scene/b.hpp -> scene/c.hpp -> scene/b.hpp',
                 'include/zraka/scene/c.hpp includes <zraka/core/none.hpp>, which does not exist',
-                'folder "other" is not in the README']
+                'folder "other" is not in the README', 'scene/README.md does not name b.hpp',
+                'scene/README.md does not name c.hpp', 'other/README.md does not name d.hpp']
         missing = [w for w in want if not any(w in g for g in got)]
         if missing or len(got) != len(want):
             print('self-test failed; missing:', missing, 'got:', got)
